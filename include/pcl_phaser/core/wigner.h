@@ -1,0 +1,46 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ */
+#pragma once
+
+#include <vector>
+
+namespace pcl_phaser {
+
+/** \brief log(i!) for i = 0..n (no std::lgamma: it may write the global signgam). */
+std::vector<double> logFactorials(int n);
+
+/** \brief First value d^L_{m'm}(beta) of the l-recurrence, L = max(|m'|, |m|), in log
+ *  space: d^L = sign * exp(log_scale + exp_cos * log cos(beta/2) + exp_sin * log
+ * sin(beta/2)). (doc/so3-correlation-spec.md section 3.3, cases i-iv). */
+struct WignerStart {
+  int degree;       ///< L
+  double sign;      ///< +1 or -1
+  double log_scale; ///< 0.5 log K(L, k)
+  int exp_cos;      ///< power of cos(beta/2)
+  int exp_sin;      ///< power of sin(beta/2)
+
+  /** \brief Value at beta given log cos(beta/2) and log sin(beta/2) (may be -inf). */
+  double value(double log_cos_half, double log_sin_half) const;
+};
+
+/** \param[in] log_factorials table of at least 2 max(|m'|,|m|) + 1 entries */
+WignerStart wignerStart(int mp, int m, const std::vector<double>& log_factorials);
+
+/** \brief Coefficients of one step of the Kostelec-Rockmore recurrence in l:
+ *  d^{l+1} = (a cos(beta) + ac) d^l - b d^{l-1}. */
+struct WignerStep {
+  double a, ac, b;
+};
+
+/** \brief Step from degree l to l+1 for orders (m', m); valid for l >= max(|m'|,|m|).
+ */
+WignerStep wignerStep(int l, int mp, int m);
+
+/** \brief d^l_{m'm}(beta) (Wigner/Sakurai convention, |d| <= 1) for l = 0..B-1; entries
+ *  with l < max(|m'|,|m|) are zero. beta in [0, pi]. Reference helper for evaluation
+ * and tests; the correlation runs its own vectorised loop. */
+std::vector<double> wignerSmallD(int mp, int m, int bandwidth, double beta);
+
+} // namespace pcl_phaser

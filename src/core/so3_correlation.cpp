@@ -1,0 +1,321 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ */
+#include "fftw_support.h"
+#include "instance_cache.h"
+
+#include <pcl_phaser/core/error.h>
+#include <pcl_phaser/core/so3_correlation.h>
+#include <pcl_phaser/core/wigner.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <utility>
+
+namespace pcl_phaser {
+
+using Complex = std::complex<double>;
+
+namespace {
+
+/** F(l, m) for any order, from the stored m >= 0 half of a real function's spectrum. */
+inline Complex coefficient(const SphericalSpectrum& F, int l, int m)
+{
+  if (m >= 0)
+    return F(l, m);
+  const Complex c = std::conj(F(l, -m));
+  return (m % 2) ? -c : c;
+}
+
+inline int wrap(int i, int n)
+{
+  return ((i % n) + n) % n;
+}
+
+void checkSpectrum(const SphericalSpectrum& F, int B, const char* what)
+{
+  if (F.rows() != B || F.cols() != B)
+    throw InvalidArgument(std::string(what) + " spectrum must be " + std::to_string(B) +
+                          " x " + std::to_string(B) + ", got " +
+                          std::to_string(F.rows()) + " x " + std::to_string(F.cols()));
+}
+
+/** Per-thread scratch of the Wigner stage: three d rows and two accumulators, split
+ * into real and imaginary parts so the inner loops vectorise. */
+struct WignerScratch {
+  explicit WignerScratch(int J, int B)
+      : d0(J)
+      , d1(J)
+      , d2(J)
+      , acc1_re(J)
+      , acc1_im(J)
+      , acc2_re(J)
+      , acc2_im(J)
+      , c1(B)
+      , c2(B)
+  {
+  }
+  std::vector<double> d0, d1, d2, acc1_re, acc1_im, acc2_re, acc2_im;
+  std::vector<Complex> c1, c2;
+};
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------
+So3CorrelationGrid::So3CorrelationGrid(So3CorrelationGrid&& o) noexcept
+    : output_bandwidth_(o.output_bandwidth_)
+    , row_stride_(o.row_stride_)
+    , data_(o.data_)
+{
+  o.data_ = nullptr;
+  o.output_bandwidth_ = 0;
+}
+
+So3CorrelationGrid& So3CorrelationGrid::operator=(So3CorrelationGrid&& o) noexcept
+{
+  std::swap(output_bandwidth_, o.output_bandwidth_);
+  std::swap(row_stride_, o.row_stride_);
+  std::swap(data_, o.data_);
+  return *this;
+}
+
+So3CorrelationGrid::~So3CorrelationGrid()
+{
+  if (data_)
+    fftw_free(data_);
+}
+
+So3GridIndex So3CorrelationGrid::argmax() const
+{
+  const int N = size();
+  So3GridIndex best;
+  double best_value = -std::numeric_limits<double>::infinity();
+  for (int j = 0; j < N; ++j)
+    for (int a = 0; a < N; ++a) {
+      const double* row = data_ + (static_cast<std::size_t>(j) * N + a) * row_stride_;
+      for (int c = 0; c < N; ++c)
+        if (row[c] > best_value) {
+          best_value = row[c];
+          best = {j, a, c};
+        }
+    }
+  return best;
+}
+
+// ---------------------------------------------------------------------------------------
+struct So3Correlator::Plan {
+  detail::FftwPlan slice_c2r; // one in-place N x N c2r, run once per beta sample
+};
+
+std::shared_ptr<const So3Correlator> So3Correlator::instance(int bandwidth,
+                                                             int output_bandwidth)
+{
+  checkBandwidth(bandwidth);
+  if (output_bandwidth == 0)
+    output_bandwidth = bandwidth;
+  static detail::InstanceCache<std::pair<int, int>, So3Correlator> cache;
+  return cache.get({bandwidth, output_bandwidth}, [&] {
+    return std::make_shared<const So3Correlator>(bandwidth, output_bandwidth);
+  });
+}
+
+So3Correlator::So3Correlator(int bandwidth, int output_bandwidth)
+    : bandwidth_(bandwidth)
+    , output_bandwidth_(output_bandwidth ? output_bandwidth : bandwidth)
+    , plan_(std::make_unique<Plan>())
+{
+  checkBandwidth(bandwidth_);
+  checkBandwidth(output_bandwidth_, "output bandwidth");
+  if (output_bandwidth_ < bandwidth_)
+    throw InvalidArgument("output bandwidth must be >= bandwidth");
+  const int Bo = output_bandwidth_;
+  const int N = 2 * Bo;
+  for (int j = 0; j < Bo; ++j) {
+    const double beta = M_PI * (2 * j + 1) / (4.0 * Bo);
+    cos_beta_.push_back(std::cos(beta));
+    log_cos_half_.push_back(std::log(std::cos(0.5 * beta)));
+    log_sin_half_.push_back(std::log(std::sin(0.5 * beta)));
+  }
+  log_factorials_ = logFactorials(2 * bandwidth_ + 1);
+  // Each slice is N x (Bo+1) complex = N x 2(Bo+1) padded reals; its byte size
+  // 32 Bo (Bo+1) is a multiple of 64, so every slice keeps the planning alignment.
+  auto slice =
+      detail::fftwAllocate<fftw_complex>(static_cast<std::size_t>(N) * (Bo + 1));
+  std::lock_guard<std::mutex> lock(detail::fftwPlannerMutex());
+  plan_->slice_c2r = detail::FftwPlan(fftw_plan_dft_c2r_2d(
+      N, N, slice.get(), reinterpret_cast<double*>(slice.get()), detail::kFftwFlags));
+}
+
+So3Correlator::~So3Correlator() = default;
+
+So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
+                                            const SphericalSpectrum& source,
+                                            int num_threads) const
+{
+  const int B = bandwidth_;
+  const int Bo = output_bandwidth_;
+  const int N = 2 * Bo;
+  const int J = Bo; // beta_j for j < Bo; the mirrored half comes from d(pi - beta)
+  const std::size_t nh = Bo + 1;
+  const std::size_t slice = static_cast<std::size_t>(N) * nh;
+  checkSpectrum(target, B, "target");
+  checkSpectrum(source, B, "source");
+  num_threads = std::max(1, num_threads);
+
+  So3CorrelationGrid grid;
+  grid.output_bandwidth_ = Bo;
+  grid.row_stride_ = 2 * nh;
+  grid.data_ = static_cast<double*>(fftw_malloc(sizeof(fftw_complex) * slice * N));
+  if (!grid.data_)
+    throw std::bad_alloc();
+  Complex* T = reinterpret_cast<Complex*>(grid.data_);
+
+#pragma omp parallel num_threads(num_threads)
+  {
+    // Zero what the Wigner stage does not write: orders |m'| >= B (rows p in [B, N-B])
+    // and m >= B (columns q in [B, Bo]), Nyquist included.
+#pragma omp for schedule(static)
+    for (int s = 0; s < N; ++s)
+      for (int p = 0; p < N; ++p) {
+        Complex* row = T + s * slice + p * nh;
+        const bool unused_row = p >= B && p <= N - B;
+        std::fill(row + (unused_row ? 0 : B), row + nh, Complex(0.0));
+      }
+
+    WignerScratch w(J, B);
+    const double* cb = cos_beta_.data();
+#pragma omp for schedule(dynamic, 1)
+    for (int m = 0; m < B; ++m) {
+      for (int mp = -(B - 1); mp < B; ++mp) {
+        const int L = std::max(std::abs(mp), m);
+        for (int l = L; l < B; ++l) {
+          const Complex h = source(l, m);
+          w.c1[l] = std::conj(coefficient(target, l, mp)) * h;
+          const Complex c2 = std::conj(coefficient(target, l, -mp)) * h;
+          w.c2[l] = ((l - m) % 2) ? -c2 : c2;
+        }
+        const WignerStart start = wignerStart(mp, m, log_factorials_);
+        double* dprev = w.d0.data();
+        double* dpp = w.d1.data();
+        double* dnext = w.d2.data();
+        for (int j = 0; j < J; ++j) {
+          dprev[j] = start.value(log_cos_half_[j], log_sin_half_[j]);
+          dpp[j] = 0.0;
+        }
+        std::fill(w.acc1_re.begin(), w.acc1_re.end(), 0.0);
+        std::fill(w.acc1_im.begin(), w.acc1_im.end(), 0.0);
+        std::fill(w.acc2_re.begin(), w.acc2_re.end(), 0.0);
+        std::fill(w.acc2_im.begin(), w.acc2_im.end(), 0.0);
+        double* __restrict a1r = w.acc1_re.data();
+        double* __restrict a1i = w.acc1_im.data();
+        double* __restrict a2r = w.acc2_re.data();
+        double* __restrict a2i = w.acc2_im.data();
+        for (int l = L; l < B; ++l) {
+          const double c1r = w.c1[l].real(), c1i = w.c1[l].imag();
+          const double c2r = w.c2[l].real(), c2i = w.c2[l].imag();
+          for (int j = 0; j < J; ++j) {
+            const double d = dprev[j];
+            a1r[j] += c1r * d;
+            a1i[j] += c1i * d;
+            a2r[j] += c2r * d;
+            a2i[j] += c2i * d;
+          }
+          if (l + 1 < B) {
+            const WignerStep st = wignerStep(l, mp, m);
+            for (int j = 0; j < J; ++j)
+              dnext[j] = (st.a * cb[j] + st.ac) * dprev[j] - st.b * dpp[j];
+            std::swap(dpp, dprev);   // dpp <- d^l
+            std::swap(dprev, dnext); // dprev <- d^{l+1}
+          }
+        }
+        // c2r computes sum T e^{+i...}: feed conj(S) to get the e^{-i...} sum of the
+        // spec.
+        const int p1 = wrap(mp, N), p2 = wrap(-mp, N);
+        for (int j = 0; j < J; ++j) {
+          T[j * slice + p1 * nh + m] = Complex(a1r[j], -a1i[j]);
+          T[(N - 1 - j) * slice + p2 * nh + m] = Complex(a2r[j], -a2i[j]);
+        }
+      }
+    }
+
+#pragma omp for schedule(static)
+    for (int s = 0; s < N; ++s) {
+      fftw_complex* in = reinterpret_cast<fftw_complex*>(T + s * slice);
+      fftw_execute_dft_c2r(plan_->slice_c2r.get(), in, reinterpret_cast<double*>(in));
+    }
+  }
+  return grid;
+}
+
+// ---------------------------------------------------------------------------------------
+std::vector<double> evaluateCorrelation(const SphericalSpectrum& target,
+                                        const SphericalSpectrum& source,
+                                        const std::vector<Eigen::Matrix3d>& rotations,
+                                        int num_threads)
+{
+  const int B = static_cast<int>(source.rows());
+  checkBandwidth(B);
+  checkSpectrum(target, B, "target");
+  checkSpectrum(source, B, "source");
+  const int K = static_cast<int>(rotations.size());
+  std::vector<EulerZYZ> euler(K);
+  std::vector<double> cb(K), lc(K), ls(K);
+  for (int k = 0; k < K; ++k) {
+    euler[k] = eulerFromRotation(rotations[k]);
+    cb[k] = std::cos(euler[k].beta);
+    lc[k] = std::log(std::cos(0.5 * euler[k].beta));
+    ls[k] = std::log(std::sin(0.5 * euler[k].beta));
+  }
+  const std::vector<double> lf = logFactorials(2 * B + 1);
+  // Per-order partial sums, reduced in a fixed order: identical for any thread count.
+  std::vector<double> partial(static_cast<std::size_t>(B) * K, 0.0);
+
+#pragma omp parallel num_threads(std::max(1, num_threads))
+  {
+    std::vector<double> d0(K), d1(K), d2(K);
+    std::vector<Complex> acc(K), sum_mp(K);
+#pragma omp for schedule(dynamic, 1)
+    for (int m = 0; m < B; ++m) {
+      std::fill(sum_mp.begin(), sum_mp.end(), Complex(0.0));
+      for (int mp = -(B - 1); mp < B; ++mp) {
+        const int L = std::max(std::abs(mp), m);
+        const WignerStart start = wignerStart(mp, m, lf);
+        double* dprev = d0.data();
+        double* dpp = d1.data();
+        double* dnext = d2.data();
+        for (int k = 0; k < K; ++k) {
+          dprev[k] = start.value(lc[k], ls[k]);
+          dpp[k] = 0.0;
+          acc[k] = 0.0;
+        }
+        for (int l = L; l < B; ++l) {
+          const Complex c = std::conj(coefficient(target, l, mp)) * source(l, m);
+          for (int k = 0; k < K; ++k)
+            acc[k] += c * dprev[k];
+          if (l + 1 < B) {
+            const WignerStep st = wignerStep(l, mp, m);
+            for (int k = 0; k < K; ++k)
+              dnext[k] = (st.a * cb[k] + st.ac) * dprev[k] - st.b * dpp[k];
+            std::swap(dpp, dprev);
+            std::swap(dprev, dnext);
+          }
+        }
+        for (int k = 0; k < K; ++k)
+          sum_mp[k] += std::polar(1.0, -mp * euler[k].alpha) * acc[k];
+      }
+      const double eps = (m == 0) ? 1.0 : 2.0;
+      for (int k = 0; k < K; ++k)
+        partial[static_cast<std::size_t>(m) * K + k] =
+            eps * (std::polar(1.0, -m * euler[k].gamma) * sum_mp[k]).real();
+    }
+  }
+  std::vector<double> value(K, 0.0);
+  for (int m = 0; m < B; ++m)
+    for (int k = 0; k < K; ++k)
+      value[k] += partial[static_cast<std::size_t>(m) * K + k];
+  return value;
+}
+
+} // namespace pcl_phaser
