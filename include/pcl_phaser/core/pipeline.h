@@ -1,0 +1,68 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ */
+#pragma once
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <string>
+
+namespace pcl_phaser {
+
+/** \brief Parameters of one registration, with the defaults PhaserRegistration uses. */
+struct PhaserParameters {
+  int bandwidth = 64;            ///< spherical bandwidth B, 1..256
+  int spatial_grid_size = 128;   ///< voxels along the longest axis, 8..1024
+  double voxel_size = 0.0;       ///< explicit voxel size in metres; 0 = from grid size
+  int refinement_iterations = 3; ///< Newton iterations on SO(3), 0..10
+  int passes = 3;      ///< at most; 1: one global pass; 2+: re-project, re-correlate
+  int num_threads = 1; ///< worker threads, 1..64
+};
+
+/** \brief Empty when \a p is legal, else the reason (for PCL_ERROR). */
+std::string validateParameters(const PhaserParameters& p);
+
+/** \brief What one registration found, in centred coordinates: for source points q_s
+ * and target points q_t (each relative to its projection centre), q_t ~ R q_s + t. */
+struct PhaserEstimate {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  double rotation_score = 0.0;    ///< C(R) / (|f| |h|), in [-1, 1]
+  double translation_score = 0.0; ///< peak-to-sidelobe ratio of the 3-D correlation
+  double sampling_ms = 0.0;       ///< spherical binning of the source
+  double sht_ms = 0.0;            ///< spherical harmonic transform of the source
+  double so3_ms = 0.0;            ///< SO(3) correlation and peak search
+  double refinement_ms = 0.0;     ///< Newton refinement of the rotation
+  double translation_ms = 0.0;    ///< voxelisation, 3-D FFT, correlation, peak
+  int passes = 0;                 ///< passes run
+  double target_ms = 0.0; ///< target preparation (0 when it came from the cache)
+};
+
+/** \brief Everything that depends on the target alone (its spherical spectrum, its
+ * voxel grid and voxel spectrum): computed once, reused for many sources. Immutable. */
+class TargetModel;
+
+/** \brief Prepares a target.
+ *  \param[in] points 3 x n target points relative to the target's projection centre
+ *  \param[in] params parameters (bandwidth, grid)
+ *  \throws InvalidArgument when parameters are illegal or the points carry no signal
+ *  (none finite, all at the centre, or all in one direction) */
+std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
+                                                 const PhaserParameters& params);
+
+/** \brief Time spent preparing \a model, in milliseconds. */
+double preparationTime(const TargetModel& model);
+
+/** \brief Registers a source against a prepared target.
+ *  \param[in] target prepared with the same bandwidth and grid parameters
+ *  \param[in] points 3 x n source points relative to the source's projection centre
+ *  \param[in] params parameters
+ *  \throws InvalidArgument when parameters are illegal, do not match the target model,
+ * or the source carries no signal */
+PhaserEstimate estimateTransform(const TargetModel& target,
+                                 const Eigen::Matrix3Xd& points,
+                                 const PhaserParameters& params);
+
+} // namespace pcl_phaser

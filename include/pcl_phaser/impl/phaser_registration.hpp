@@ -1,0 +1,176 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ */
+#pragma once
+
+#include <pcl_phaser/core/error.h>
+#include <pcl_phaser/phaser_registration.h>
+
+#include <pcl/common/point_tests.h>
+#include <pcl/common/transforms.h>
+#include <pcl/console/print.h>
+#include <pcl/type_traits.h>
+
+#include <new>
+
+namespace pcl {
+
+namespace phaser_detail {
+
+/** \brief Finite xyz of the selected points, as doubles, mapped by \a T. */
+template <typename PointT, typename Indices>
+Eigen::Matrix3Xd finitePoints(const PointCloud<PointT>& cloud, const Indices* indices,
+                              const Eigen::Matrix4d& T)
+{
+  const std::size_t n = indices ? indices->size() : cloud.size();
+  Eigen::Matrix3Xd out(3, n);
+  Eigen::Index count = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const PointT& p = cloud[indices ? static_cast<std::size_t>((*indices)[i]) : i];
+    if (!isXYZFinite(p))
+      continue;
+    const Eigen::Vector3d q(p.x, p.y, p.z);
+    out.col(count++) = T.topLeftCorner<3, 3>() * q + T.topRightCorner<3, 1>();
+  }
+  out.conservativeResize(3, count);
+  return out;
+}
+
+template <typename PointT, typename Scalar>
+void transformWhole(const PointCloud<PointT>& in, PointCloud<PointT>& out,
+                    const Eigen::Matrix<Scalar, 4, 4>& T)
+{
+  if constexpr (traits::has_normal_v<PointT>)
+    transformPointCloudWithNormals(in, out, T);
+  else
+    transformPointCloud(in, out, T);
+}
+
+} // namespace phaser_detail
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void PhaserRegistration<PointSource, PointTarget, Scalar>::setInputSource(
+    const PointCloudSourceConstPtr& cloud)
+{
+  if (cloud && !cloud->is_dense)
+    PCL_WARN(
+        "[pcl::%s::setInputSource] The source cloud is not dense; non-finite points "
+        "are skipped.\n",
+        getClassName().c_str());
+  Base::setInputSource(cloud);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void PhaserRegistration<PointSource, PointTarget, Scalar>::setInputTarget(
+    const PointCloudTargetConstPtr& cloud)
+{
+  invalidateTarget();
+  if (cloud && !cloud->is_dense)
+    PCL_WARN(
+        "[pcl::%s::setInputTarget] The target cloud is not dense; non-finite points "
+        "are skipped.\n",
+        getClassName().c_str());
+  Base::setInputTarget(cloud);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void PhaserRegistration<PointSource, PointTarget, Scalar>::fail(
+    PointCloudSource& output, const Matrix4& guess, const std::string& reason)
+{
+  PCL_ERROR("[pcl::%s::computeTransformation] %s\n", getClassName().c_str(),
+            reason.c_str());
+  converged_ = false;
+  final_transformation_ = transformation_ = guess;
+  phaser_detail::transformWhole(*input_, output, final_transformation_);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation(
+    PointCloudSource& output, const Matrix4& guess)
+{
+  converged_ = false;
+  estimate_ = {};
+  const std::string problem = pcl_phaser::validateParameters(params_);
+  if (!problem.empty())
+    return fail(output, guess, problem);
+  const Eigen::Matrix4d G = guess.template cast<double>();
+  if (!G.allFinite())
+    return fail(output, guess, "the initial guess is not finite");
+
+  double target_ms = 0.0;
+  Eigen::Vector3d source_center = Eigen::Vector3d::Zero();
+  try {
+    // Target: prepared once per target and parameter set, relative to its centre.
+    if (!target_model_) {
+      Eigen::Matrix3Xd tgt = phaser_detail::finitePoints(
+          *target_, static_cast<const Indices*>(nullptr), Eigen::Matrix4d::Identity());
+      if (tgt.cols() == 0)
+        return fail(output, guess, "the target cloud has no finite points");
+      target_center_ = center_ == ProjectionCenter::Centroid
+                           ? Eigen::Vector3d(tgt.rowwise().mean())
+                           : Eigen::Vector3d::Zero();
+      tgt.colwise() -= target_center_;
+      target_model_ = pcl_phaser::prepareTarget(tgt, params_);
+      target_ms = pcl_phaser::preparationTime(*target_model_);
+    }
+    // Source: the points of indices_, finite, moved by the guess, relative to its
+    // centre (its sensor origin moves with the guess too).
+    Eigen::Matrix3Xd src = phaser_detail::finitePoints(*input_, indices_.get(), G);
+    if (src.cols() == 0)
+      return fail(output, guess, "the source cloud has no finite points");
+    source_center = center_ == ProjectionCenter::Centroid
+                        ? Eigen::Vector3d(src.rowwise().mean())
+                        : Eigen::Vector3d(G.topRightCorner<3, 1>());
+    src.colwise() -= source_center;
+    estimate_ = pcl_phaser::estimateTransform(*target_model_, src, params_);
+    estimate_.target_ms = target_ms;
+  } catch (const pcl_phaser::InvalidArgument& e) {
+    return fail(output, guess, e.what());
+  } catch (const std::bad_alloc&) {
+    return fail(output, guess, "out of memory (reduce the bandwidth or the grid size)");
+  }
+  // p_target = R (G p_source - c_s) + c_t + t
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  T.topLeftCorner<3, 3>() = estimate_.rotation;
+  T.topRightCorner<3, 1>() =
+      target_center_ + estimate_.translation - estimate_.rotation * source_center;
+  const Eigen::Matrix4d final_transform = T * G;
+  if (!final_transform.allFinite())
+    return fail(output, guess, "the estimate is not finite");
+  final_transformation_ = transformation_ = final_transform.cast<Scalar>();
+  converged_ = true;
+  phaser_detail::transformWhole(*input_, output, final_transformation_);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+double
+PhaserRegistration<PointSource, PointTarget, Scalar>::getFitnessScore(double max_range)
+{
+  constexpr double none = std::numeric_limits<double>::max();
+  if (!input_ || !target_ || !tree_ || !tree_->getInputCloud())
+    return none;
+  PointCloudSource transformed;
+  transformPointCloud(*input_, transformed, final_transformation_);
+  pcl::Indices nn_index(1);
+  std::vector<float> nn_distance(1);
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const PointSource& p : transformed) {
+    if (!isXYZFinite(p))
+      continue;
+    PointTarget query;
+    query.x = p.x;
+    query.y = p.y;
+    query.z = p.z;
+    if (tree_->nearestKSearch(query, 1, nn_index, nn_distance) == 0)
+      continue;
+    if (nn_distance[0] <= max_range) {
+      sum += nn_distance[0];
+      ++count;
+    }
+  }
+  return count ? sum / static_cast<double>(count) : none;
+}
+
+} // namespace pcl

@@ -1,0 +1,215 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ */
+#pragma once
+
+#include <pcl_phaser/core/pipeline.h>
+
+#include <pcl/registration/registration.h>
+
+#include <limits>
+#include <memory>
+#include <string>
+
+namespace pcl {
+
+/** \brief PhaserRegistration: correspondence-free global registration of two point
+ * clouds by spherical and spatial phase correlation (PHASER).
+ *
+ *  \details The rotation comes from correlating the spherical-harmonic spectra of the
+ * two clouds, projected on the sphere about a centre, on SO(3) (Kostelec-Rockmore),
+ * refined by Newton steps with exact evaluation; the translation from a 3-D FFT
+ * correlation of the voxelised target and rotated source, with a sub-voxel peak. No
+ * normals, features or correspondences are needed, so it replaces
+ * pcl::SampleConsensusInitialAlignment as the global initialiser ahead of
+ * pcl::IterativeClosestPoint: \code pcl::PhaserRegistration<pcl::PointXYZ,
+ * pcl::PointXYZ> phaser; phaser.setInputSource(source); phaser.setInputTarget(target);
+ *  pcl::PointCloud<pcl::PointXYZ> aligned;
+ *  phaser.align(aligned);
+ *  if (phaser.hasConverged()) {
+ *    pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ> icp;
+ *    icp.setInputSource(source);
+ *    icp.setInputTarget(target);
+ *    icp.align(aligned, phaser.getFinalTransformation());
+ *  }
+ *  \endcode
+ *
+ *  Conventions: getFinalTransformation() maps source points into the target frame
+ *  (p_target = T p_source), as for every pcl::Registration. A \a guess passed to
+ * align() is applied to the source first and the estimate is composed with it.
+ * Non-finite points are skipped; \a indices_ selects the source points used for the
+ * estimate, while the output is the whole transformed input (PCL's convention), with
+ * normals rotated for point types that carry them. Everything that depends only on the
+ * target (its spherical spectrum and voxel spectrum) is cached until setInputTarget()
+ * or a parameter change.
+ *
+ *  Reference: L. Bernreiter, L. Ott, J. Nieto, R. Siegwart, C. Cadena, "PHASER: a
+ * Robust and Correspondence-free Global Pointcloud Registration", IEEE Robotics and
+ * Automation Letters 6(2), 2021. \author the pcl_phaser developers \ingroup
+ * registration
+ */
+template <typename PointSource, typename PointTarget, typename Scalar = float>
+class PhaserRegistration : public Registration<PointSource, PointTarget, Scalar> {
+public:
+  using Ptr = shared_ptr<PhaserRegistration<PointSource, PointTarget, Scalar>>;
+  using ConstPtr =
+      shared_ptr<const PhaserRegistration<PointSource, PointTarget, Scalar>>;
+
+  using Base = Registration<PointSource, PointTarget, Scalar>;
+  using typename Base::Matrix4;
+  using typename Base::PointCloudSource;
+  using typename Base::PointCloudSourceConstPtr;
+  using typename Base::PointCloudSourcePtr;
+  using typename Base::PointCloudTarget;
+  using typename Base::PointCloudTargetConstPtr;
+  using typename Base::PointCloudTargetPtr;
+
+  using Base::converged_;
+  using Base::final_transformation_;
+  using Base::getClassName;
+  using Base::indices_;
+  using Base::input_;
+  using Base::reg_name_;
+  using Base::target_;
+  using Base::transformation_;
+  using Base::tree_;
+
+  /** \brief Where the clouds are projected on the sphere. */
+  enum class ProjectionCenter {
+    SensorOrigin, ///< the origin of each cloud's frame (LiDAR scans in their sensor
+                  ///< frame)
+    Centroid ///< each cloud's centroid (object scans, clouds far from their origin)
+  };
+
+  PhaserRegistration() { reg_name_ = "PhaserRegistration"; }
+  ~PhaserRegistration() override = default;
+
+  /** \brief Provide the source cloud (the one to be aligned); drops per-source state.
+   */
+  void setInputSource(const PointCloudSourceConstPtr& cloud) override;
+
+  /** \brief Provide the target cloud; invalidates the cached target spectra. */
+  void setInputTarget(const PointCloudTargetConstPtr& cloud) override;
+
+  /** \brief Set the spherical bandwidth B (1..256): the sphere is sampled on a 2B x 2B
+   * grid and the SO(3) grid spacing is pi/B (before refinement). Default 64. \param[in]
+   * bandwidth the bandwidth */
+  void setBandwidth(int bandwidth)
+  {
+    params_.bandwidth = bandwidth;
+    invalidateTarget();
+  }
+  /** \brief Get the spherical bandwidth. */
+  int getBandwidth() const { return params_.bandwidth; }
+
+  /** \brief Set the number of voxels along the longest axis of the translation grid
+   *  (8..1024); the grid is sized to the target with a margin. Default 128.
+   *  \param[in] grid_size voxels along the longest axis */
+  void setSpatialGridSize(int grid_size)
+  {
+    params_.spatial_grid_size = grid_size;
+    invalidateTarget();
+  }
+  /** \brief Get the number of voxels along the longest axis of the translation grid. */
+  int getSpatialGridSize() const { return params_.spatial_grid_size; }
+
+  /** \brief Set an explicit voxel size in metres for the translation grid; 0 (default)
+   *  derives it from the spatial grid size and the extent of the target.
+   *  \param[in] voxel_size voxel edge length in metres (>= 0) */
+  void setVoxelSize(double voxel_size)
+  {
+    params_.voxel_size = voxel_size;
+    invalidateTarget();
+  }
+  /** \brief Get the explicit voxel size (0 when derived from the grid size). */
+  double getVoxelSize() const { return params_.voxel_size; }
+
+  /** \brief Set the number of Newton iterations that refine the rotation peak (0..10).
+   *  Default 3. \param[in] iterations number of iterations */
+  void setRefinementIterations(int iterations)
+  {
+    params_.refinement_iterations = iterations;
+  }
+  /** \brief Get the number of Newton iterations of the rotation refinement. */
+  int getRefinementIterations() const { return params_.refinement_iterations; }
+
+  /** \brief Set the number of passes (1..5). Pass 1 estimates rotation and translation
+   *  with each cloud projected about its own centre; every further pass projects the
+   *  source, moved by the current estimate, about the target's centre, so the range
+   *  function no longer suffers the parallax of the source's viewpoint, and measures
+   * the residual shift on a fine grid over the target's inner region. Default 2.
+   *  \param[in] passes number of passes */
+  void setNumberOfPasses(int passes)
+  {
+    params_.passes = passes;
+    invalidateTarget();
+  }
+  /** \brief Get the number of passes. */
+  int getNumberOfPasses() const { return params_.passes; }
+
+  /** \brief Set the number of worker threads (1..64); results are bit-identical for any
+   *  count. Default 1. \param[in] nr_threads number of threads */
+  void setNumberOfThreads(unsigned int nr_threads)
+  {
+    params_.num_threads = static_cast<int>(nr_threads);
+  }
+  /** \brief Get the number of worker threads. */
+  unsigned int getNumberOfThreads() const
+  {
+    return static_cast<unsigned int>(params_.num_threads);
+  }
+
+  /** \brief Set the centre of the spherical projection. Default SensorOrigin.
+   *  \param[in] center where both clouds are projected on the sphere */
+  void setProjectionCenter(ProjectionCenter center)
+  {
+    center_ = center;
+    invalidateTarget();
+  }
+  /** \brief Get the centre of the spherical projection. */
+  ProjectionCenter getProjectionCenter() const { return center_; }
+
+  /** \brief Normalised SO(3) correlation at the estimated rotation, in [-1, 1]. */
+  double getRotationScore() const { return estimate_.rotation_score; }
+
+  /** \brief Quality of the translation peak (see pcl_phaser::PhaserEstimate). */
+  double getTranslationScore() const { return estimate_.translation_score; }
+
+  /** \brief Everything the last align() measured: scores and the time of each stage. */
+  const pcl_phaser::PhaserEstimate& getEstimate() const { return estimate_; }
+
+  /** \brief Mean squared distance from the transformed source to its nearest target
+   *  point, over pairs whose squared distance is <= \a max_range; std::numeric_limits<
+   *  double>::max() when there is none. Unlike the base class in PCL 1.13 this skips
+   *  non-finite source points (Debian's PCL aborts on NaN queries). Note that the base
+   *  version is not virtual: a call through a pcl::Registration pointer runs PCL's.
+   *  \param[in] max_range maximum squared distance of a pair that counts */
+  double getFitnessScore(double max_range = std::numeric_limits<double>::max());
+
+protected:
+  /** \brief Estimate the transformation and transform the whole input into \a output.
+   */
+  void computeTransformation(PointCloudSource& output, const Matrix4& guess) override;
+
+private:
+  void invalidateTarget() { target_model_.reset(); }
+
+  /** \brief Fails with PCL_ERROR, final transformation = guess, not converged. */
+  void fail(PointCloudSource& output, const Matrix4& guess, const std::string& reason);
+
+  pcl_phaser::PhaserParameters params_;
+  ProjectionCenter center_ = ProjectionCenter::SensorOrigin;
+  std::shared_ptr<const pcl_phaser::TargetModel> target_model_;
+  Eigen::Vector3d target_center_ = Eigen::Vector3d::Zero();
+  pcl_phaser::PhaserEstimate estimate_;
+
+public:
+  PCL_MAKE_ALIGNED_OPERATOR_NEW
+};
+
+} // namespace pcl
+
+#ifdef PCL_NO_PRECOMPILE
+#include <pcl_phaser/impl/phaser_registration.hpp>
+#endif

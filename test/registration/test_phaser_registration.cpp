@@ -1,0 +1,493 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ *
+ * The pcl::Registration contract of PhaserRegistration on synthetic clouds: known poses
+ * recovered, guess, indices, normals, caching, threads, swapped inputs, PCL's kd-tree
+ * caching loop, and every bad input of the issue.
+ */
+#include <pcl_phaser/phaser_registration.h>
+
+#include <pcl/common/transforms.h>
+#include <pcl/point_types.h>
+#include <pcl/search/kdtree.h>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <thread>
+
+namespace {
+
+using CloudXYZ = pcl::PointCloud<pcl::PointXYZ>;
+constexpr double kDeg = M_PI / 180.0;
+
+/** An asymmetric "yard" around the origin: ground, walls of different lengths, boxes
+ * and poles, sampled uniformly on the surfaces (seeded). */
+template <typename PointT>
+typename pcl::PointCloud<PointT>::Ptr makeScene(unsigned seed = 1, int n = 20000)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  auto cloud = pcl::make_shared<pcl::PointCloud<PointT>>();
+  auto add = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& normal, float value) {
+    PointT q;
+    q.x = static_cast<float>(p.x());
+    q.y = static_cast<float>(p.y());
+    q.z = static_cast<float>(p.z());
+    if constexpr (pcl::traits::has_normal_v<PointT>) {
+      q.normal_x = static_cast<float>(normal.x());
+      q.normal_y = static_cast<float>(normal.y());
+      q.normal_z = static_cast<float>(normal.z());
+    }
+    if constexpr (pcl::traits::has_intensity_v<PointT>)
+      q.intensity = value;
+    cloud->push_back(q);
+  };
+  for (int i = 0; i < n; ++i) {
+    const double a = u(rng), b = u(rng);
+    switch (i % 6) {
+    case 0: // ground, 40 x 30 m
+      add({-18 + 40 * a, -12 + 30 * b, -1.8}, Eigen::Vector3d::UnitZ(), 0.2f);
+      break;
+    case 1: // long wall at x = 14
+      add({14.0, -10 + 22 * a, -1.8 + 6 * b}, -Eigen::Vector3d::UnitX(), 0.6f);
+      break;
+    case 2: // short wall at y = -9
+      add({-6 + 9 * a, -9.0, -1.8 + 4 * b}, Eigen::Vector3d::UnitY(), 0.4f);
+      break;
+    case 3: { // a box 3 x 2 x 2.5 m at (4, 6)
+      const double h = -1.8 + 2.5 * b;
+      const double t = 10 * a; // perimeter parameter
+      if (t < 3)
+        add({3 + t, 5, h}, -Eigen::Vector3d::UnitY(), 0.9f);
+      else if (t < 5)
+        add({6, 5 + (t - 3), h}, Eigen::Vector3d::UnitX(), 0.9f);
+      else if (t < 8)
+        add({6 - (t - 5), 7, h}, Eigen::Vector3d::UnitY(), 0.9f);
+      else
+        add({3, 7 - (t - 8), h}, -Eigen::Vector3d::UnitX(), 0.9f);
+      break;
+    }
+    case 4: { // three poles
+      const Eigen::Vector2d c[] = {{-5, 4}, {8, -4}, {-10, -6}};
+      const Eigen::Vector2d& p = c[i % 3];
+      const double ang = 2 * M_PI * a;
+      add({p.x() + 0.2 * std::cos(ang), p.y() + 0.2 * std::sin(ang), -1.8 + 5 * b},
+          Eigen::Vector3d(std::cos(ang), std::sin(ang), 0), 1.0f);
+      break;
+    }
+    default: // a slanted roof segment
+      add({-12 + 6 * a, 2 + 5 * b, 1.5 + 1.5 * a}, Eigen::Vector3d(-0.24, 0, 0.97),
+          0.5f);
+    }
+  }
+  return cloud;
+}
+
+Eigen::Matrix4f makePose(const Eigen::Vector3d& axis, double angle,
+                         const Eigen::Vector3d& t)
+{
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  T.topLeftCorner<3, 3>() =
+      Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
+  T.topRightCorner<3, 1>() = t;
+  return T.cast<float>();
+}
+
+double rotationErrorDeg(const Eigen::Matrix4f& A, const Eigen::Matrix4f& B)
+{
+  const Eigen::Matrix3d R =
+      (A.topLeftCorner<3, 3>().transpose() * B.topLeftCorner<3, 3>()).cast<double>();
+  return Eigen::AngleAxisd(R).angle() / kDeg;
+}
+
+double translationError(const Eigen::Matrix4f& A, const Eigen::Matrix4f& B)
+{
+  return (A.topRightCorner<3, 1>() - B.topRightCorner<3, 1>()).norm();
+}
+
+/** Source = the scene seen from pose T (source = T^-1 scene): the answer is T. */
+template <typename PointT>
+typename pcl::PointCloud<PointT>::Ptr seenFrom(const pcl::PointCloud<PointT>& scene,
+                                               const Eigen::Matrix4f& T)
+{
+  auto out = pcl::make_shared<pcl::PointCloud<PointT>>();
+  if constexpr (pcl::traits::has_normal_v<PointT>)
+    pcl::transformPointCloudWithNormals(scene, *out, Eigen::Matrix4f(T.inverse()));
+  else
+    pcl::transformPointCloud(scene, *out, Eigen::Matrix4f(T.inverse()));
+  return out;
+}
+
+} // namespace
+
+TEST(PhaserRegistration, RecoversKnownPoseSensorOrigin)
+{
+  const auto target = makeScene<pcl::PointXYZ>();
+  for (const Eigen::Matrix4f& T : {makePose({0, 0, 1}, 2.3, {1.2, -0.7, 0.1}),
+                                   makePose({1, 2, 3}, -1.4, {-0.4, 1.5, 0.3}),
+                                   makePose({0.3, -1, 0.2}, 0.9, {0.0, 0.0, 0.0})}) {
+    pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+    phaser.setInputSource(seenFrom(*target, T));
+    phaser.setInputTarget(target);
+    CloudXYZ out;
+    phaser.align(out);
+    ASSERT_TRUE(phaser.hasConverged());
+    EXPECT_LT(rotationErrorDeg(phaser.getFinalTransformation(), T), 0.5);
+    EXPECT_LT(translationError(phaser.getFinalTransformation(), T), 0.05);
+    EXPECT_EQ(out.size(), target->size());
+    EXPECT_LT(phaser.getFitnessScore(), 0.05);
+  }
+}
+
+TEST(PhaserRegistration, CentroidModeHandlesLargeOffsets)
+{
+  // PCL's SAC-IA pattern: the source moved by 100 m and yawed by 90 degrees.
+  const auto target = makeScene<pcl::PointXYZ>(3);
+  const Eigen::Matrix4f T = makePose({0, 0, 1}, M_PI / 2, {100, 0, 0});
+  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+  phaser.setProjectionCenter(decltype(phaser)::ProjectionCenter::Centroid);
+  phaser.setInputSource(seenFrom(*target, T));
+  phaser.setInputTarget(target);
+  CloudXYZ out;
+  phaser.align(out);
+  ASSERT_TRUE(phaser.hasConverged());
+  EXPECT_LT(rotationErrorDeg(phaser.getFinalTransformation(), T), 1.0);
+  EXPECT_LT(translationError(phaser.getFinalTransformation(), T), 0.2);
+}
+
+TEST(PhaserRegistration, SwappedInputsGiveTheInverse)
+{
+  const auto target = makeScene<pcl::PointXYZ>(5);
+  const Eigen::Matrix4f T = makePose({1, -1, 4}, 2.0, {0.8, 0.4, -0.2});
+  const auto source = seenFrom(*target, T);
+  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> forward, backward;
+  CloudXYZ out;
+  forward.setInputSource(source);
+  forward.setInputTarget(target);
+  forward.align(out);
+  backward.setInputSource(target);
+  backward.setInputTarget(source);
+  backward.align(out);
+  ASSERT_TRUE(forward.hasConverged() && backward.hasConverged());
+  const Eigen::Matrix4f inverse = backward.getFinalTransformation().inverse();
+  EXPECT_LT(rotationErrorDeg(forward.getFinalTransformation(), inverse), 1.0);
+  EXPECT_LT(translationError(forward.getFinalTransformation(), inverse), 0.2);
+  EXPECT_GT(rotationErrorDeg(backward.getFinalTransformation(), T), 10.0);
+}
+
+TEST(PhaserRegistration, GuessIsAppliedAndComposed)
+{
+  const auto target = makeScene<pcl::PointXYZ>(7);
+  const Eigen::Matrix4f T = makePose({0, 0, 1}, 1.0, {0.5, 0.5, 0});
+  const Eigen::Matrix4f guess = makePose({0, 0, 1}, 0.8, {0.3, 0.2, 0});
+  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+  phaser.setInputSource(seenFrom(*target, T));
+  phaser.setInputTarget(target);
+  CloudXYZ out;
+  phaser.align(out, guess);
+  ASSERT_TRUE(phaser.hasConverged());
+  EXPECT_LT(rotationErrorDeg(phaser.getFinalTransformation(), T), 1.0);
+  EXPECT_LT(translationError(phaser.getFinalTransformation(), T), 0.2);
+}
+
+TEST(PhaserRegistration, IndicesSelectTheEstimateOutputIsWholeCloud)
+{
+  const auto target = makeScene<pcl::PointXYZ>(9);
+  const Eigen::Matrix4f T = makePose({0, 1, 1}, 0.7, {0.3, -0.2, 0.1});
+  auto source = seenFrom(*target, T);
+  // Append garbage far away; indices exclude it, so the estimate is unaffected.
+  const std::size_t n = source->size();
+  for (int i = 0; i < 2000; ++i)
+    source->push_back(pcl::PointXYZ(500.0f + i, -300.0f, 40.0f));
+  auto indices = pcl::make_shared<pcl::Indices>(n);
+  for (std::size_t i = 0; i < n; ++i)
+    (*indices)[i] = static_cast<int>(i);
+  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+  phaser.setInputSource(source);
+  phaser.setIndices(indices);
+  phaser.setInputTarget(target);
+  CloudXYZ out;
+  phaser.align(out);
+  ASSERT_TRUE(phaser.hasConverged());
+  EXPECT_LT(rotationErrorDeg(phaser.getFinalTransformation(), T), 1.0);
+  EXPECT_EQ(out.size(), source->size());
+}
+
+TEST(PhaserRegistration, NormalsAreRotatedAndInputUntouched)
+{
+  const auto target = makeScene<pcl::PointNormal>(11);
+  const Eigen::Matrix4f T = makePose({2, 1, 1}, -1.1, {0.4, 0.1, 0.0});
+  const auto source = seenFrom(*target, T);
+  const pcl::PointCloud<pcl::PointNormal> source_copy = *source;
+  pcl::PhaserRegistration<pcl::PointNormal, pcl::PointNormal> phaser;
+  phaser.setInputSource(source);
+  phaser.setInputTarget(target);
+  pcl::PointCloud<pcl::PointNormal> out;
+  phaser.align(out);
+  ASSERT_TRUE(phaser.hasConverged());
+  EXPECT_LT(rotationErrorDeg(phaser.getFinalTransformation(), T), 1.0);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < out.size(); ++i)
+    worst = std::max<double>(
+        worst,
+        (out[i].getNormalVector3fMap() - (*target)[i].getNormalVector3fMap()).norm());
+  EXPECT_LT(worst, 0.03); // 1 degree ~ 0.017
+  for (std::size_t i = 0; i < source->size(); ++i)
+    ASSERT_EQ(0, std::memcmp(&(*source)[i], &source_copy[i], sizeof(pcl::PointNormal)));
+}
+
+TEST(PhaserRegistration, CachedTargetGivesIdenticalResults)
+{
+  const auto target = makeScene<pcl::PointXYZ>(13);
+  const Eigen::Matrix4f T = makePose({0, 0, 1}, -2.5, {1.0, 0.0, 0.0});
+  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+  phaser.setInputSource(seenFrom(*target, T));
+  phaser.setInputTarget(target);
+  CloudXYZ out;
+  phaser.align(out);
+  const Eigen::Matrix4f first = phaser.getFinalTransformation();
+  EXPECT_GT(phaser.getEstimate().target_ms, 0.0);
+  phaser.align(out);
+  EXPECT_EQ(phaser.getEstimate().target_ms, 0.0); // target spectra came from the cache
+  EXPECT_TRUE(first == phaser.getFinalTransformation());
+  phaser.setInputTarget(target); // invalidates
+  phaser.align(out);
+  EXPECT_GT(phaser.getEstimate().target_ms, 0.0);
+  EXPECT_TRUE(first == phaser.getFinalTransformation());
+}
+
+TEST(PhaserRegistration, ThreadCountDoesNotChangeTheResult)
+{
+  const auto target = makeScene<pcl::PointXYZ>(15);
+  const auto source = seenFrom(*target, makePose({1, 0, 1}, 1.9, {-0.5, 0.3, 0.0}));
+  Eigen::Matrix4f results[2];
+  for (int k = 0; k < 2; ++k) {
+    pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+    phaser.setNumberOfThreads(k + 1);
+    phaser.setInputSource(source);
+    phaser.setInputTarget(target);
+    CloudXYZ out;
+    phaser.align(out);
+    results[k] = phaser.getFinalTransformation();
+  }
+  EXPECT_TRUE(results[0] == results[1]);
+}
+
+TEST(PhaserRegistration, TwoRegistrationsAtOnce)
+{
+  const auto target = makeScene<pcl::PointXYZ>(17);
+  const Eigen::Matrix4f T[2] = {makePose({0, 0, 1}, 0.6, {0.2, 0.1, 0}),
+                                makePose({1, 1, 0}, -2.2, {-0.3, 0.6, 0.1})};
+  Eigen::Matrix4f got[2];
+  std::thread workers[2];
+  for (int k = 0; k < 2; ++k)
+    workers[k] = std::thread([&, k] {
+      pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+      phaser.setBandwidth(k == 0 ? 48 : 64); // different plans built concurrently too
+      phaser.setInputSource(seenFrom(*target, T[k]));
+      phaser.setInputTarget(target);
+      CloudXYZ out;
+      phaser.align(out);
+      got[k] = phaser.getFinalTransformation();
+    });
+  for (auto& w : workers)
+    w.join();
+  for (int k = 0; k < 2; ++k)
+    EXPECT_LT(rotationErrorDeg(got[k], T[k]), 1.5);
+}
+
+TEST(PhaserRegistration, PclKdTreeCachingSchemes)
+{
+  // The loop of PCL's test_sac_ia: every combination of provided / forced search trees.
+  const auto target = makeScene<pcl::PointXYZ>(19);
+  const Eigen::Matrix4f T = makePose({0, 0, 1}, M_PI / 2, {0.5, 0.5, 0});
+  const auto source = seenFrom(*target, T);
+  for (int scheme = 0; scheme < 4; ++scheme) {
+    pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+    const bool force_target = scheme & 1, force_source = scheme & 2;
+    auto tree = pcl::make_shared<pcl::search::KdTree<pcl::PointXYZ>>();
+    tree->setInputCloud(target);
+    phaser.setSearchMethodTarget(tree, force_target);
+    auto tree_source = pcl::make_shared<pcl::search::KdTree<pcl::PointXYZ>>();
+    tree_source->setInputCloud(source);
+    phaser.setSearchMethodSource(tree_source, force_source);
+    phaser.setInputSource(source);
+    phaser.setInputTarget(target);
+    CloudXYZ out;
+    phaser.align(out);
+    ASSERT_TRUE(phaser.hasConverged()) << "scheme " << scheme;
+    EXPECT_LT(rotationErrorDeg(phaser.getFinalTransformation(), T), 1.0);
+    EXPECT_LT(phaser.getFitnessScore(), 0.05) << "scheme " << scheme;
+    EXPECT_EQ(out.size(), source->size());
+  }
+}
+
+TEST(PhaserRegistration, AllPointTypesInstantiated)
+{
+  auto run = [](auto tag) {
+    using PointT = decltype(tag);
+    const auto target = makeScene<PointT>(21, 3000);
+    const Eigen::Matrix4f T = makePose({0, 0, 1}, 1.2, {0.3, 0.0, 0.0});
+    pcl::PhaserRegistration<PointT, PointT> phaser;
+    phaser.setInputSource(seenFrom(*target, T));
+    phaser.setInputTarget(target);
+    pcl::PointCloud<PointT> out;
+    phaser.align(out);
+    EXPECT_TRUE(phaser.hasConverged());
+    EXPECT_LT(rotationErrorDeg(phaser.getFinalTransformation(), T), 1.5);
+  };
+  run(pcl::PointXYZ());
+  run(pcl::PointXYZI());
+  run(pcl::PointXYZRGB());
+  run(pcl::PointXYZRGBA());
+  run(pcl::PointNormal());
+  run(pcl::PointXYZINormal());
+}
+
+// ---------------------------------------------------------------------------------------
+// Bad input: PCL_ERROR, hasConverged() == false, final transformation == guess, no
+// crash.
+
+namespace {
+
+void expectRejected(pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ>& phaser,
+                    const CloudXYZ::Ptr& source, const CloudXYZ::Ptr& target)
+{
+  const Eigen::Matrix4f guess = makePose({0, 0, 1}, 0.3, {1, 2, 3});
+  phaser.setInputSource(source);
+  phaser.setInputTarget(target);
+  CloudXYZ out;
+  phaser.align(out, guess);
+  EXPECT_FALSE(phaser.hasConverged());
+  EXPECT_TRUE(phaser.getFinalTransformation() == guess);
+  (void)phaser.getFitnessScore(); // must not abort on NaN points
+}
+
+CloudXYZ::Ptr cloudOf(std::initializer_list<pcl::PointXYZ> points)
+{
+  auto c = pcl::make_shared<CloudXYZ>();
+  for (const auto& p : points)
+    c->push_back(p);
+  return c;
+}
+
+} // namespace
+
+TEST(PhaserRegistrationBadInput, EmptyClouds)
+{
+  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+  const auto scene = makeScene<pcl::PointXYZ>();
+  auto empty = pcl::make_shared<CloudXYZ>();
+  phaser.setInputSource(empty); // PCL rejects it: no source
+  phaser.setInputTarget(scene);
+  CloudXYZ out;
+  phaser.align(out);
+  EXPECT_FALSE(phaser.hasConverged());
+  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> other;
+  other.setInputSource(scene);
+  other.setInputTarget(empty); // PCL rejects it: no target
+  other.align(out);
+  EXPECT_FALSE(other.hasConverged());
+}
+
+TEST(PhaserRegistrationBadInput, AllNaN)
+{
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  auto nan_cloud = cloudOf({{nan, nan, nan}, {nan, 1, 2}, {3, nan, 4}});
+  nan_cloud->is_dense = false;
+  const auto scene = makeScene<pcl::PointXYZ>();
+  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> a, b;
+  expectRejected(a, nan_cloud, scene);
+  expectRejected(b, scene, nan_cloud);
+}
+
+TEST(PhaserRegistrationBadInput, SinglePointAndDuplicates)
+{
+  const auto scene = makeScene<pcl::PointXYZ>();
+  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> a, b, c;
+  expectRejected(a, cloudOf({{1, 2, 3}}), scene);
+  expectRejected(b, scene, cloudOf({{1, 2, 3}}));
+  expectRejected(c, cloudOf({{1, 2, 3}, {1, 2, 3}, {1, 2, 3}}), scene);
+}
+
+TEST(PhaserRegistrationBadInput, AllPointsAtTheCentre)
+{
+  const auto scene = makeScene<pcl::PointXYZ>();
+  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> a;
+  expectRejected(a, cloudOf({{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}), scene);
+}
+
+TEST(PhaserRegistrationBadInput, HugeCoordinates)
+{
+  auto huge = makeScene<pcl::PointXYZ>();
+  for (auto& p : *huge)
+    p.x += 1e7f;
+  const auto scene = makeScene<pcl::PointXYZ>();
+  // Sensor-origin mode: every point lies in one direction, no signal: rejected.
+  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> a;
+  expectRejected(a, huge, scene);
+  // Centroid mode copes; it must not crash whatever it finds.
+  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> b;
+  b.setProjectionCenter(decltype(b)::ProjectionCenter::Centroid);
+  b.setInputSource(huge);
+  b.setInputTarget(scene);
+  CloudXYZ out;
+  b.align(out);
+  EXPECT_TRUE(b.getFinalTransformation().allFinite());
+}
+
+TEST(PhaserRegistrationBadInput, ParametersOutOfRange)
+{
+  const auto scene = makeScene<pcl::PointXYZ>();
+  const auto source = seenFrom(*scene, makePose({0, 0, 1}, 0.5, {0, 0, 0}));
+  auto check = [&](auto&& configure) {
+    pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+    configure(phaser);
+    expectRejected(phaser, source, scene);
+  };
+  check([](auto& p) { p.setBandwidth(0); });
+  check([](auto& p) { p.setBandwidth(1000); });
+  check([](auto& p) { p.setSpatialGridSize(0); });
+  check([](auto& p) { p.setSpatialGridSize(10000); });
+  check([](auto& p) { p.setVoxelSize(-1.0); });
+  check([](auto& p) { p.setVoxelSize(std::numeric_limits<double>::quiet_NaN()); });
+  check([](auto& p) { p.setVoxelSize(1e-6); }); // would need 10^7 voxels per axis
+  check([](auto& p) { p.setRefinementIterations(-1); });
+  check([](auto& p) { p.setNumberOfThreads(0); });
+  check([](auto& p) { p.setNumberOfThreads(100000); });
+}
+
+TEST(PhaserRegistrationBadInput, NonFiniteGuess)
+{
+  const auto scene = makeScene<pcl::PointXYZ>();
+  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+  phaser.setInputSource(scene);
+  phaser.setInputTarget(scene);
+  Eigen::Matrix4f guess = Eigen::Matrix4f::Identity();
+  guess(0, 3) = std::numeric_limits<float>::infinity();
+  CloudXYZ out;
+  phaser.align(out, guess);
+  EXPECT_FALSE(phaser.hasConverged());
+}
+
+TEST(PhaserRegistrationBadInput, FitnessScoreWithNaNSourceDoesNotAbort)
+{
+  auto scene = makeScene<pcl::PointXYZ>();
+  auto source = pcl::make_shared<CloudXYZ>(*scene);
+  (*source)[5].x = std::numeric_limits<float>::quiet_NaN();
+  source->is_dense = false;
+  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+  EXPECT_EQ(phaser.getFitnessScore(),
+            std::numeric_limits<double>::max()); // before align
+  phaser.setInputSource(source);
+  phaser.setInputTarget(scene);
+  CloudXYZ out;
+  phaser.align(out);
+  EXPECT_TRUE(phaser.hasConverged());
+  EXPECT_LT(phaser.getFitnessScore(), 0.05);
+}

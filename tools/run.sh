@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Set up a Debian 12 machine (as root), build pcl_phaser, and run one job.
+#   tools/run.sh demo   install deps, build, run the main job on its embedded default
+#   tools/run.sh test   install deps, build, run the whole test suite
+# Idempotent: packages already installed are skipped, the build directory is reused.
+set -euo pipefail
+job=${1:-demo}
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build=${PCL_PHASER_BUILD_DIR:-$here/build}
+
+packages=(g++ make cmake pkg-config libpcl-dev libeigen3-dev libfftw3-dev libboost-dev
+          libgtest-dev xvfb xauth)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "Installing: ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release
+cmake --build "$build" -j"$(nproc)"
+
+case "$job" in
+  demo)
+    "$build/tools/pcl_phaser_engine_benchmark" ;;
+  test)
+    cd "$build" && ctest --output-on-failure -j"$(nproc)" ;;
+  *)
+    echo "usage: $0 demo|test" >&2; exit 2 ;;
+esac
