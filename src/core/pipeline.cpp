@@ -40,7 +40,8 @@ SphericalSpectrum sphericalSpectrum(const Eigen::Matrix3Xd& points,
                                     double* sampling_ms, double* sht_ms)
 {
   auto t = Clock::now();
-  const SphericalSamples samples = sampleSphere(points, p.bandwidth);
+  const SphericalSamples samples =
+      sampleSphere(points, p.bandwidth, nullptr, p.num_threads);
   if (sampling_ms)
     *sampling_ms = msSince(t);
   if (samples.observed_cells < 2)

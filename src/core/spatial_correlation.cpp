@@ -149,8 +149,11 @@ SpatialVolume voxelizeImpl(const SpatialGrid& grid, const Eigen::Matrix3Xd& poin
   // centres at integers) lies in [-1, n) on every axis; the range test is done in
   // double so far or negative points are dropped before any integer conversion (the
   // original cast -1 to unsigned and wrote such points into valid voxels).
-  std::vector<Splat> splats;
-  splats.reserve(static_cast<std::size_t>(count));
+  // Footprints are a pure function of each point: computed in parallel, then compacted
+  // in point order.
+  std::vector<Splat> all(static_cast<std::size_t>(count));
+  std::vector<char> inside(static_cast<std::size_t>(count), 0);
+#pragma omp parallel for num_threads(threads) schedule(static)
   for (Eigen::Index i = 0; i < count; ++i) {
     const double value = values ? (*values)[i] : 1.0;
     const Eigen::Array3d u =
@@ -159,14 +162,29 @@ SpatialVolume voxelizeImpl(const SpatialGrid& grid, const Eigen::Matrix3Xd& poin
         (u >= upper).any())
       continue;
     const Eigen::Array3d lower = u.floor();
-    splats.push_back({lower.cast<int>().matrix(), (u - lower).matrix(), value});
+    all[i] = {lower.cast<int>().matrix(), (u - lower).matrix(), value};
+    inside[i] = 1;
   }
-  // Stable sort by lower x index: slab x then visits the points with lower index x-1
-  // and x, each run in point order.
-  const auto by_x = [](const Splat& a, const Splat& b) {
-    return a.base.x() < b.base.x();
-  };
-  std::stable_sort(splats.begin(), splats.end(), by_x);
+  std::vector<Splat> splats;
+  splats.reserve(static_cast<std::size_t>(count));
+  for (Eigen::Index i = 0; i < count; ++i)
+    if (inside[i])
+      splats.push_back(all[i]);
+
+  // Counting sort by lower x index (base x in [-1, nx)), stable by construction: slab x
+  // then visits the points with lower index x-1 and x, each run in point order.
+  std::vector<std::size_t> slab_start(static_cast<std::size_t>(nx) + 2, 0);
+  for (const Splat& sp : splats)
+    ++slab_start[static_cast<std::size_t>(sp.base.x() + 1) + 1];
+  for (std::size_t i = 1; i < slab_start.size(); ++i)
+    slab_start[i] += slab_start[i - 1];
+  {
+    std::vector<Splat> sorted(splats.size());
+    std::vector<std::size_t> next(slab_start.begin(), slab_start.end() - 1);
+    for (const Splat& sp : splats)
+      sorted[next[static_cast<std::size_t>(sp.base.x() + 1)]++] = sp;
+    splats.swap(sorted);
+  }
 
   SpatialVolume volume;
   volume.grid = grid;
@@ -179,11 +197,9 @@ SpatialVolume voxelizeImpl(const SpatialGrid& grid, const Eigen::Matrix3Xd& poin
   for (int x = 0; x < nx; ++x) {
     // Slab x is written by this iteration only and sums its points in a fixed order, so
     // the result does not depend on the thread count (no racy += into shared voxels).
-    Splat lo{}, hi{};
-    lo.base.x() = x - 1;
-    hi.base.x() = x;
-    const auto first = std::lower_bound(splats.begin(), splats.end(), lo, by_x);
-    const auto last = std::upper_bound(first, splats.end(), hi, by_x);
+    // Splats with lower x index x-1 and x: buckets x and x+1 of the counting sort.
+    const auto first = splats.begin() + static_cast<std::ptrdiff_t>(slab_start[x]);
+    const auto last = splats.begin() + static_cast<std::ptrdiff_t>(slab_start[x + 2]);
     for (auto s = first; s != last; ++s) {
       const double wx = s->base.x() == x ? 1.0 - s->frac.x() : s->frac.x();
       for (int dy = 0; dy < 2; ++dy) {
@@ -270,17 +286,26 @@ double peakScore(const SpatialVolume& c, const Eigen::Vector3i& peak, int thread
 {
   const SpatialGrid& grid = c.grid;
   const Eigen::Vector3i& n = grid.dims;
-  const auto laplacian = [&](int x, int y, int z) {
-    const Eigen::Vector3i p(x, y, z);
-    double sum = 0.0;
-    for (int a = 0; a < 3; ++a)
-      for (int d : {-1, 1}) {
-        Eigen::Vector3i q = p;
-        q[a] += d;
-        sum += sampleWrapped(c, q);
+  const int nx = n.x(), ny = n.y(), nz = n.z();
+  // The Laplacian volume, computed once (neighbours wrap around).
+  SpatialRealArray lap(grid.size());
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (int x = 0; x < nx; ++x) {
+    const int xm = wrapIndex(x - 1, nx), xp = wrapIndex(x + 1, nx);
+    for (int y = 0; y < ny; ++y) {
+      const int ym = wrapIndex(y - 1, ny), yp = wrapIndex(y + 1, ny);
+      const double* row = &c.values[grid.flatIndex(x, y, 0)];
+      const double* rxm = &c.values[grid.flatIndex(xm, y, 0)];
+      const double* rxp = &c.values[grid.flatIndex(xp, y, 0)];
+      const double* rym = &c.values[grid.flatIndex(x, ym, 0)];
+      const double* ryp = &c.values[grid.flatIndex(x, yp, 0)];
+      double* out = &lap[grid.flatIndex(x, y, 0)];
+      for (int z = 0; z < nz; ++z) {
+        const int zm = z == 0 ? nz - 1 : z - 1, zp = z + 1 == nz ? 0 : z + 1;
+        out[z] = row[z] - (rxm[z] + rxp[z] + rym[z] + ryp[z] + row[zm] + row[zp]) / 6.0;
       }
-    return c.values[grid.flatIndex(x, y, z)] - sum / 6.0;
-  };
+    }
+  }
   const auto near_peak = [&](int x, int y, int z) {
     const Eigen::Vector3i p(x, y, z);
     for (int a = 0; a < 3; ++a)
@@ -289,21 +314,26 @@ double peakScore(const SpatialVolume& c, const Eigen::Vector3i& peak, int thread
         return false;
     return true;
   };
-  std::vector<double> slab_sum(static_cast<std::size_t>(n.x()));
-  std::vector<std::size_t> slab_count(static_cast<std::size_t>(n.x()));
+  // Per-slab partial sums added in slab order: the same result for any thread count.
+  std::vector<double> slab_sum(static_cast<std::size_t>(nx));
+  std::vector<std::size_t> slab_count(static_cast<std::size_t>(nx));
   const auto sidelobe_sum = [&](double mean, bool squared, std::size_t& count) {
 #pragma omp parallel for num_threads(threads) schedule(static)
-    for (int x = 0; x < n.x(); ++x) {
+    for (int x = 0; x < nx; ++x) {
       double sum = 0.0;
       std::size_t k = 0;
-      for (int y = 0; y < n.y(); ++y)
-        for (int z = 0; z < n.z(); ++z) {
-          if (near_peak(x, y, z))
+      const bool x_near =
+          std::abs(wrapLag(wrapIndex(x - peak.x(), nx), nx)) <= kPeakExclusionRadius;
+      for (int y = 0; y < ny; ++y) {
+        const double* l = &lap[grid.flatIndex(x, y, 0)];
+        for (int z = 0; z < nz; ++z) {
+          if (x_near && near_peak(x, y, z))
             continue;
-          const double v = laplacian(x, y, z) - mean;
+          const double v = l[z] - mean;
           sum += squared ? v * v : v;
           ++k;
         }
+      }
       slab_sum[static_cast<std::size_t>(x)] = sum;
       slab_count[static_cast<std::size_t>(x)] = k;
     }
@@ -322,7 +352,7 @@ double peakScore(const SpatialVolume& c, const Eigen::Vector3i& peak, int thread
   const double mean = total / static_cast<double>(count);
   const double deviation =
       std::sqrt(sidelobe_sum(mean, true, count) / static_cast<double>(count));
-  const double height = laplacian(peak.x(), peak.y(), peak.z()) - mean;
+  const double height = lap[grid.flatIndex(peak.x(), peak.y(), peak.z())] - mean;
   if (!(height > 0.0))
     return 0.0; // flat surface, or no peak standing out
   // A lone spike over exact zeros (deviation 0) gets a large finite score, not inf.

@@ -6,12 +6,13 @@
 #include <pcl_phaser/core/spherical_grid.h>
 #include <pcl_phaser/core/spherical_sampling.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace pcl_phaser {
 
 SphericalSamples sampleSphere(const Eigen::Matrix3Xd& points, int bandwidth,
-                              const Eigen::VectorXd* values)
+                              const Eigen::VectorXd* values, int num_threads)
 {
   checkBandwidth(bandwidth);
   if (values && values->size() != points.cols())
@@ -21,12 +22,19 @@ SphericalSamples sampleSphere(const Eigen::Matrix3Xd& points, int bandwidth,
   out.bandwidth = bandwidth;
   out.values.assign(cells, 0.0);
   std::vector<int> counts(cells, 0);
-  for (Eigen::Index i = 0; i < points.cols(); ++i) {
-    const Eigen::Vector3d p = points.col(i);
-    const int cell = cellIndex(p, bandwidth);
+  // Cell lookup (two atan2 per point) is a pure function of the point: parallel; the
+  // accumulation stays sequential in point order, so any thread count gives the same
+  // bits.
+  const Eigen::Index n = points.cols();
+  std::vector<int> cell_of(static_cast<std::size_t>(n));
+#pragma omp parallel for num_threads(std::max(1, num_threads)) schedule(static)
+  for (Eigen::Index i = 0; i < n; ++i)
+    cell_of[i] = cellIndex(points.col(i), bandwidth);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const int cell = cell_of[i];
     if (cell < 0)
       continue;
-    const double v = values ? (*values)[i] : p.norm();
+    const double v = values ? (*values)[i] : points.col(i).norm();
     if (!std::isfinite(v))
       continue;
     out.values[cell] += v;

@@ -27,6 +27,7 @@ struct SphericalSamples {
  * bandwidth B (1..256) \param[in] values optional per-point values (size n) \throws
  * InvalidArgument on an illegal bandwidth or a size mismatch */
 SphericalSamples sampleSphere(const Eigen::Matrix3Xd& points, int bandwidth,
-                              const Eigen::VectorXd* values = nullptr);
+                              const Eigen::VectorXd* values = nullptr,
+                              int num_threads = 1);
 
 } // namespace pcl_phaser

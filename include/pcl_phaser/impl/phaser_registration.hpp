@@ -12,17 +12,23 @@
 #include <pcl/console/print.h>
 #include <pcl/type_traits.h>
 
+#include <cmath>
 #include <new>
 
 namespace pcl {
 
 namespace phaser_detail {
 
-/** \brief Finite xyz of the selected points, as doubles, mapped by \a T. */
+/** \brief Beyond this, float32 coordinates are quantised to more than 6 cm. */
+constexpr float kMaxCoordinate = 1e6f;
+
+/** \brief Finite xyz of the selected points, as doubles, mapped by \a T; \a too_far is
+ *  set when a coordinate exceeds kMaxCoordinate. */
 template <typename PointT, typename Indices>
 Eigen::Matrix3Xd finitePoints(const PointCloud<PointT>& cloud, const Indices* indices,
-                              const Eigen::Matrix4d& T)
+                              const Eigen::Matrix4d& T, bool& too_far)
 {
+  too_far = false;
   const std::size_t n = indices ? indices->size() : cloud.size();
   Eigen::Matrix3Xd out(3, n);
   Eigen::Index count = 0;
@@ -30,6 +36,8 @@ Eigen::Matrix3Xd finitePoints(const PointCloud<PointT>& cloud, const Indices* in
     const PointT& p = cloud[indices ? static_cast<std::size_t>((*indices)[i]) : i];
     if (!isXYZFinite(p))
       continue;
+    too_far = too_far || std::abs(p.x) > kMaxCoordinate ||
+              std::abs(p.y) > kMaxCoordinate || std::abs(p.z) > kMaxCoordinate;
     const Eigen::Vector3d q(p.x, p.y, p.z);
     out.col(count++) = T.topLeftCorner<3, 3>() * q + T.topRightCorner<3, 1>();
   }
@@ -98,15 +106,22 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
   if (!G.allFinite())
     return fail(output, guess, "the initial guess is not finite");
 
+  static const char* const kTooFar = "coordinates beyond 1e6 m: float32 resolution is "
+                                     "worse than 6 cm there; shift the "
+                                     "clouds first (e.g. pcl::demeanPointCloud)";
   double target_ms = 0.0;
   Eigen::Vector3d source_center = Eigen::Vector3d::Zero();
   try {
     // Target: prepared once per target and parameter set, relative to its centre.
     if (!target_model_) {
-      Eigen::Matrix3Xd tgt = phaser_detail::finitePoints(
-          *target_, static_cast<const Indices*>(nullptr), Eigen::Matrix4d::Identity());
+      bool too_far = false;
+      Eigen::Matrix3Xd tgt =
+          phaser_detail::finitePoints(*target_, static_cast<const Indices*>(nullptr),
+                                      Eigen::Matrix4d::Identity(), too_far);
       if (tgt.cols() == 0)
         return fail(output, guess, "the target cloud has no finite points");
+      if (too_far)
+        return fail(output, guess, kTooFar);
       target_center_ = center_ == ProjectionCenter::Centroid
                            ? Eigen::Vector3d(tgt.rowwise().mean())
                            : Eigen::Vector3d::Zero();
@@ -116,9 +131,13 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
     }
     // Source: the points of indices_, finite, moved by the guess, relative to its
     // centre (its sensor origin moves with the guess too).
-    Eigen::Matrix3Xd src = phaser_detail::finitePoints(*input_, indices_.get(), G);
+    bool too_far = false;
+    Eigen::Matrix3Xd src =
+        phaser_detail::finitePoints(*input_, indices_.get(), G, too_far);
     if (src.cols() == 0)
       return fail(output, guess, "the source cloud has no finite points");
+    if (too_far)
+      return fail(output, guess, kTooFar);
     source_center = center_ == ProjectionCenter::Centroid
                         ? Eigen::Vector3d(src.rowwise().mean())
                         : Eigen::Vector3d(G.topRightCorner<3, 1>());
