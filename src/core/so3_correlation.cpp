@@ -61,6 +61,82 @@ struct WignerScratch {
   std::vector<Complex> c1, c2;
 };
 
+/** The Wigner stage for one order pair (m', m): runs the l-recurrence over all beta_j
+ *  (j < J) and accumulates the two half-plane sums. Plain arrays only, so the function
+ * can be compiled twice and picked at run time: AVX2 where the CPU has it (4 doubles
+ * per instruction), SSE2 elsewhere. No -march=native anywhere (see the integration
+ * notes). The choice depends on the machine only, never on the thread count. */
+[[gnu::target_clones("avx2", "default")]] void
+wignerAccumulate(int L, int B, int J, int mp, int m, const double* __restrict cb,
+                 const double* __restrict c1, const double* __restrict c2,
+                 double* __restrict d0, double* __restrict d1, double* __restrict d2,
+                 double* __restrict a1r, double* __restrict a1i, double* __restrict a2r,
+                 double* __restrict a2i)
+{
+  double* dprev = d0;
+  double* dpp = d1;
+  double* dnext = d2;
+  for (int j = 0; j < J; ++j) {
+    a1r[j] = a1i[j] = a2r[j] = a2i[j] = 0.0;
+    dpp[j] =
+        0.0; // d^{L-1} := 0 (its coefficient b is 0 too, but 0 * garbage may be NaN)
+  }
+  for (int l = L; l < B; ++l) {
+    const double c1r = c1[2 * l], c1i = c1[2 * l + 1];
+    const double c2r = c2[2 * l], c2i = c2[2 * l + 1];
+    for (int j = 0; j < J; ++j) {
+      const double d = dprev[j];
+      a1r[j] += c1r * d;
+      a1i[j] += c1i * d;
+      a2r[j] += c2r * d;
+      a2i[j] += c2i * d;
+    }
+    if (l + 1 < B) {
+      const WignerStep st = wignerStep(l, mp, m);
+      for (int j = 0; j < J; ++j)
+        dnext[j] = (st.a * cb[j] + st.ac) * dprev[j] - st.b * dpp[j];
+      double* tmp = dpp; // dpp <- d^l, dprev <- d^{l+1}
+      dpp = dprev;
+      dprev = dnext;
+      dnext = tmp;
+    }
+  }
+}
+
+/** The l-recurrence of the exact evaluation for one order pair, for K rotations at once
+ *  (their cos beta in \a cb): acc_k = sum_l c_l d^l(beta_k), split into real and
+ *  imaginary parts. Dispatched like wignerAccumulate. */
+[[gnu::target_clones("avx2", "default")]] void
+evaluateAccumulate(int L, int B, int K, int mp, int m, const double* __restrict cb,
+                   const double* __restrict c, double* __restrict d0,
+                   double* __restrict d1, double* __restrict d2,
+                   double* __restrict acc_re, double* __restrict acc_im)
+{
+  double* dprev = d0;
+  double* dpp = d1;
+  double* dnext = d2;
+  for (int k = 0; k < K; ++k) {
+    acc_re[k] = acc_im[k] = 0.0;
+    dpp[k] = 0.0;
+  }
+  for (int l = L; l < B; ++l) {
+    const double cr = c[2 * l], ci = c[2 * l + 1];
+    for (int k = 0; k < K; ++k) {
+      acc_re[k] += cr * dprev[k];
+      acc_im[k] += ci * dprev[k];
+    }
+    if (l + 1 < B) {
+      const WignerStep st = wignerStep(l, mp, m);
+      for (int k = 0; k < K; ++k)
+        dnext[k] = (st.a * cb[k] + st.ac) * dprev[k] - st.b * dpp[k];
+      double* tmp = dpp;
+      dpp = dprev;
+      dprev = dnext;
+      dnext = tmp;
+    }
+  }
+}
+
 } // namespace
 
 // ---------------------------------------------------------------------------------------
@@ -197,39 +273,17 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
           w.c2[l] = ((l - m) % 2) ? -c2 : c2;
         }
         const WignerStart start = wignerStart(mp, m, log_factorials_);
-        double* dprev = w.d0.data();
-        double* dpp = w.d1.data();
-        double* dnext = w.d2.data();
-        for (int j = 0; j < J; ++j) {
-          dprev[j] = start.value(log_cos_half_[j], log_sin_half_[j]);
-          dpp[j] = 0.0;
-        }
-        std::fill(w.acc1_re.begin(), w.acc1_re.end(), 0.0);
-        std::fill(w.acc1_im.begin(), w.acc1_im.end(), 0.0);
-        std::fill(w.acc2_re.begin(), w.acc2_re.end(), 0.0);
-        std::fill(w.acc2_im.begin(), w.acc2_im.end(), 0.0);
-        double* __restrict a1r = w.acc1_re.data();
-        double* __restrict a1i = w.acc1_im.data();
-        double* __restrict a2r = w.acc2_re.data();
-        double* __restrict a2i = w.acc2_im.data();
-        for (int l = L; l < B; ++l) {
-          const double c1r = w.c1[l].real(), c1i = w.c1[l].imag();
-          const double c2r = w.c2[l].real(), c2i = w.c2[l].imag();
-          for (int j = 0; j < J; ++j) {
-            const double d = dprev[j];
-            a1r[j] += c1r * d;
-            a1i[j] += c1i * d;
-            a2r[j] += c2r * d;
-            a2i[j] += c2i * d;
-          }
-          if (l + 1 < B) {
-            const WignerStep st = wignerStep(l, mp, m);
-            for (int j = 0; j < J; ++j)
-              dnext[j] = (st.a * cb[j] + st.ac) * dprev[j] - st.b * dpp[j];
-            std::swap(dpp, dprev);   // dpp <- d^l
-            std::swap(dprev, dnext); // dprev <- d^{l+1}
-          }
-        }
+        for (int j = 0; j < J; ++j)
+          w.d0[j] = start.value(log_cos_half_[j], log_sin_half_[j]);
+        wignerAccumulate(L, B, J, mp, m, cb,
+                         reinterpret_cast<const double*>(w.c1.data()),
+                         reinterpret_cast<const double*>(w.c2.data()), w.d0.data(),
+                         w.d1.data(), w.d2.data(), w.acc1_re.data(), w.acc1_im.data(),
+                         w.acc2_re.data(), w.acc2_im.data());
+        const double* a1r = w.acc1_re.data();
+        const double* a1i = w.acc1_im.data();
+        const double* a2r = w.acc2_re.data();
+        const double* a2i = w.acc2_im.data();
         // c2r computes sum T e^{+i...}: feed conj(S) to get the e^{-i...} sum of the
         // spec.
         const int p1 = wrap(mp, N), p2 = wrap(-mp, N);
@@ -274,36 +328,24 @@ std::vector<double> evaluateCorrelation(const SphericalSpectrum& target,
 
 #pragma omp parallel num_threads(std::max(1, num_threads))
   {
-    std::vector<double> d0(K), d1(K), d2(K);
-    std::vector<Complex> acc(K), sum_mp(K);
+    std::vector<double> d0(K), d1(K), d2(K), acc_re(K), acc_im(K);
+    std::vector<Complex> sum_mp(K), c(B);
 #pragma omp for schedule(dynamic, 1)
     for (int m = 0; m < B; ++m) {
       std::fill(sum_mp.begin(), sum_mp.end(), Complex(0.0));
       for (int mp = -(B - 1); mp < B; ++mp) {
         const int L = std::max(std::abs(mp), m);
         const WignerStart start = wignerStart(mp, m, lf);
-        double* dprev = d0.data();
-        double* dpp = d1.data();
-        double* dnext = d2.data();
-        for (int k = 0; k < K; ++k) {
-          dprev[k] = start.value(lc[k], ls[k]);
-          dpp[k] = 0.0;
-          acc[k] = 0.0;
-        }
-        for (int l = L; l < B; ++l) {
-          const Complex c = std::conj(coefficient(target, l, mp)) * source(l, m);
-          for (int k = 0; k < K; ++k)
-            acc[k] += c * dprev[k];
-          if (l + 1 < B) {
-            const WignerStep st = wignerStep(l, mp, m);
-            for (int k = 0; k < K; ++k)
-              dnext[k] = (st.a * cb[k] + st.ac) * dprev[k] - st.b * dpp[k];
-            std::swap(dpp, dprev);
-            std::swap(dprev, dnext);
-          }
-        }
         for (int k = 0; k < K; ++k)
-          sum_mp[k] += std::polar(1.0, -mp * euler[k].alpha) * acc[k];
+          d0[k] = start.value(lc[k], ls[k]);
+        for (int l = L; l < B; ++l)
+          c[l] = std::conj(coefficient(target, l, mp)) * source(l, m);
+        evaluateAccumulate(L, B, K, mp, m, cb.data(),
+                           reinterpret_cast<const double*>(c.data()), d0.data(),
+                           d1.data(), d2.data(), acc_re.data(), acc_im.data());
+        for (int k = 0; k < K; ++k)
+          sum_mp[k] +=
+              std::polar(1.0, -mp * euler[k].alpha) * Complex(acc_re[k], acc_im[k]);
       }
       const double eps = (m == 0) ? 1.0 : 2.0;
       for (int k = 0; k < K; ++k)
