@@ -3,12 +3,15 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  */
 #include <pcl_phaser/core/error.h>
+#include <pcl_phaser/core/peak_neighbourhood.h>
 #include <pcl_phaser/core/pipeline.h>
 #include <pcl_phaser/core/so3_correlation.h>
 #include <pcl_phaser/core/so3_refinement.h>
 #include <pcl_phaser/core/spatial_correlation.h>
 #include <pcl_phaser/core/spherical_harmonics.h>
 #include <pcl_phaser/core/spherical_sampling.h>
+
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <chrono>
@@ -19,6 +22,9 @@ namespace pcl_phaser {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+/** Rotation peaks closer than this are one hypothesis (a few grid cells at B = 64). */
+constexpr double kHypothesisSeparation = 10.0 * M_PI / 180.0;
 
 double msSince(Clock::time_point start)
 {
@@ -73,61 +79,85 @@ public:
 
 namespace {
 
-/** Rotation pass: spherical samples of the source, SO(3) correlation with the target's
- *  spectrum, best grid peak, Newton refinement. */
-Eigen::Matrix3d estimateRotation(const TargetModel& target,
-                                 const Eigen::Matrix3Xd& points,
-                                 const PhaserParameters& p,
-                                 const Eigen::Matrix3d& start, bool refine,
-                                 PhaserEstimate& e)
+/** The source's spherical spectrum, timed. */
+SphericalSpectrum sourceSpectrum(const Eigen::Matrix3Xd& points,
+                                 const PhaserParameters& p, PhaserEstimate& e)
 {
   double sampling_ms = 0.0, sht_ms = 0.0;
-  const SphericalSpectrum H =
-      sphericalSpectrum(points, p, "source", &sampling_ms, &sht_ms);
+  SphericalSpectrum H = sphericalSpectrum(points, p, "source", &sampling_ms, &sht_ms);
   e.sampling_ms += sampling_ms;
   e.sht_ms += sht_ms;
-  Eigen::Matrix3d R = start;
-  double value = 0.0;
-  if (start.isZero()) { // no start given: the global search on the SO(3) grid
-    const auto t = Clock::now();
-    const So3CorrelationGrid C = So3Correlator::instance(p.bandwidth)
-                                     ->correlate(target.spherical, H, p.num_threads);
-    const So3GridIndex peak = C.argmax();
-    R = rotationFromEuler(gridEuler(peak, p.bandwidth));
-    value = C(peak);
-    e.so3_ms += msSince(t);
-  }
-  if (refine && p.refinement_iterations > 0) {
-    const auto t = Clock::now();
-    const RefinedRotation refined = refineRotation(
-        target.spherical, H, R, p.bandwidth, p.refinement_iterations, p.num_threads);
-    R = refined.rotation;
-    value = refined.value;
-    e.refinement_ms += msSince(t);
-  } else if (!start.isZero()) {
-    value = evaluateCorrelation(target.spherical, H, {R}, p.num_threads)[0];
-  }
-  e.rotation_score =
-      value / (target.spherical_norm * std::sqrt(spectrumSquaredNorm(H)));
-  return R;
+  return H;
 }
 
-/** Translation pass: the (already rotated) source voxelised into the grid of \a target,
- *  3-D correlation, sub-voxel peak. */
-Eigen::Vector3d estimateShift(const SpatialSpectrum& target,
-                              const Eigen::Matrix3Xd& points, const PhaserParameters& p,
-                              PhaserEstimate& e)
+/** The global search: C on the SO(3) grid. */
+So3CorrelationGrid correlateRotation(const TargetModel& target,
+                                     const SphericalSpectrum& H,
+                                     const PhaserParameters& p, PhaserEstimate& e)
+{
+  const auto t = Clock::now();
+  So3CorrelationGrid C = So3Correlator::instance(p.bandwidth)
+                             ->correlate(target.spherical, H, p.num_threads);
+  e.so3_ms += msSince(t);
+  return C;
+}
+
+/** Newton refinement of \a R, timed; returns the exact C there through \a value. */
+Eigen::Matrix3d refine(const TargetModel& target, const SphericalSpectrum& H,
+                       const Eigen::Matrix3d& R, const PhaserParameters& p,
+                       double& value, PhaserEstimate& e)
+{
+  const auto t = Clock::now();
+  const RefinedRotation refined = refineRotation(
+      target.spherical, H, R, p.bandwidth, p.refinement_iterations, p.num_threads);
+  value = refined.value;
+  e.refinement_ms += msSince(t);
+  return refined.rotation;
+}
+
+/** Translation: the (already rotated) source voxelised into the grid of \a target, 3-D
+ *  correlation, sub-voxel peak; the correlation volume is kept when \a volume is given.
+ */
+SpatialCorrelationResult estimateShift(const SpatialSpectrum& target,
+                                       const Eigen::Matrix3Xd& points,
+                                       const PhaserParameters& p, PhaserEstimate& e,
+                                       SpatialVolume* volume = nullptr)
 {
   const auto t = Clock::now();
   SpatialVoxelParameters voxel_params;
   voxel_params.num_threads = p.num_threads;
   const SpatialSpectrum S =
       computeSpectrum(voxelize(target.grid, points, voxel_params));
+  SpatialVolume C = correlateSpectra(target, S, p.num_threads);
   const SpatialCorrelationResult shift =
-      correlateSpatial(target, S, SpatialPeakRefinement::kGaussian, p.num_threads);
+      findSpatialPeak(C, SpatialPeakRefinement::kGaussian, p.num_threads);
   e.translation_score = shift.score;
   e.translation_ms += msSince(t);
-  return shift.shift;
+  if (volume)
+    *volume = std::move(C);
+  return shift;
+}
+
+/** Grid samples around a peak as rotations of the final estimate: each sample's offset
+ *  from the peak, delta_i = R_i R_peak^T, applied on the left of \a estimate (so the
+ *  spread is expressed in the target frame), with weights from the correlation above
+ * the lowest value of the block. */
+void rotationSamples(const So3CorrelationGrid& C, const So3GridIndex& peak,
+                     const Eigen::Matrix3d& estimate, PhaserEstimate& e)
+{
+  const std::vector<RotationSample> block = rotationNeighbourhood(C, peak, 1);
+  const Eigen::Matrix3d R_peak =
+      rotationFromEuler(gridEuler(peak, C.outputBandwidth()));
+  double lowest = block.front().value;
+  for (const RotationSample& s : block)
+    lowest = std::min(lowest, s.value);
+  e.rotation_samples.clear();
+  e.rotation_weights.clear();
+  for (const RotationSample& s : block) {
+    const Eigen::Quaterniond q(s.rotation * R_peak.transpose() * estimate);
+    e.rotation_samples.emplace_back(q.w(), q.x(), q.y(), q.z());
+    e.rotation_weights.push_back(s.value - lowest);
+  }
 }
 
 /** The target points inside the cube that holds the inner 75% of them (by distance from
@@ -166,6 +196,9 @@ std::string validateParameters(const PhaserParameters& p)
   if (p.refinement_iterations < 0 || p.refinement_iterations > 10)
     return "refinement iterations must be in [0, 10], got " +
            std::to_string(p.refinement_iterations);
+  if (p.rotation_candidates < 1 || p.rotation_candidates > 10)
+    return "number of rotation candidates must be in [1, 10], got " +
+           std::to_string(p.rotation_candidates);
   if (p.passes < 1 || p.passes > 5)
     return "number of passes must be in [1, 5], got " + std::to_string(p.passes);
   if (p.num_threads < 1 || p.num_threads > 64)
@@ -221,20 +254,57 @@ PhaserEstimate estimateTransform(const TargetModel& target,
   if (p.passes > 1 && target.fine.coefficients.empty())
     throw InvalidArgument("the target model was prepared for a single pass");
   PhaserEstimate e;
-
-  // Pass 1: rotation about the source's own centre, the shift on the coarse grid, then
-  // (with more passes) the residual shift on the fine grid.
   const bool single = p.passes == 1;
-  Eigen::Matrix3d R =
-      estimateRotation(target, points, p, Eigen::Matrix3d::Zero(), single, e);
-  Eigen::Vector3d t = estimateShift(target.coarse, R * points, p, e);
+
+  // Pass 1: the global search about the source's own centre. Each of the best distinct
+  // grid peaks (symmetric scenes have several) goes through the translation stage; the
+  // one whose rotated source overlaps the target most wins.
+  SphericalSpectrum H = sourceSpectrum(points, p, e);
+  So3CorrelationGrid C = correlateRotation(target, H, p, e);
+  std::vector<So3GridIndex> peaks;
+  if (p.rotation_candidates > 1)
+    peaks = distinctPeaks(C, p.rotation_candidates, kHypothesisSeparation);
+  if (peaks.empty())
+    peaks.push_back(C.argmax());
+  const double h_norm = std::sqrt(spectrumSquaredNorm(H));
+  std::size_t best = 0;
+  for (std::size_t k = 0; k < peaks.size(); ++k) {
+    RotationHypothesis hyp;
+    hyp.rotation = rotationFromEuler(gridEuler(peaks[k], p.bandwidth));
+    hyp.rotation_score = C(peaks[k]) / (target.spherical_norm * h_norm);
+    SpatialCorrelationResult shift =
+        estimateShift(target.coarse, hyp.rotation * points, p, e);
+    hyp.translation = shift.shift;
+    if (!single) {
+      shift = estimateShift(target.fine,
+                            (hyp.rotation * points).colwise() + hyp.translation, p, e);
+      hyp.translation += shift.shift;
+    }
+    hyp.overlap = shift.peak_value;
+    e.hypotheses.push_back(hyp);
+    if (hyp.overlap > e.hypotheses[best].overlap)
+      best = k;
+  }
+  e.chosen_hypothesis = static_cast<int>(best);
+  Eigen::Matrix3d R = e.hypotheses[best].rotation;
+  Eigen::Vector3d t = e.hypotheses[best].translation;
+  So3GridIndex peak = peaks[best];
   e.passes = 1;
+  double value = C(peak);
+  SpatialVolume last_shift;
   if (single) {
+    R = refine(target, H, R, p, value, e);
+    const SpatialCorrelationResult shift =
+        estimateShift(target.coarse, R * points, p, e, &last_shift);
+    t = shift.shift;
+    e.translation_covariance =
+        translationGaussian(last_shift, shift.index, 2).covariance;
+    rotationSamples(C, peak, R, e);
     e.rotation = R;
     e.translation = t;
+    e.rotation_score = value / (target.spherical_norm * h_norm);
     return e;
   }
-  t += estimateShift(target.fine, (R * points).colwise() + t, p, e);
   // Later passes: the source, moved by the estimate, is seen from the target's centre,
   // so its range function no longer suffers the parallax of the source's viewpoint; the
   // residual rotation and a fine-grid shift are composed with the estimate. A pass
@@ -242,24 +312,39 @@ PhaserEstimate estimateTransform(const TargetModel& target,
   // viewpoint, so another would not change the rotation: stop there.
   const double settled = 0.25 * target.fine.grid.voxel_size;
   for (int pass = 1; pass < p.passes; ++pass) {
-    const Eigen::Matrix3d dR = estimateRotation(target, (R * points).colwise() + t, p,
-                                                Eigen::Matrix3d::Zero(), false, e);
+    H = sourceSpectrum((R * points).colwise() + t, p, e);
+    C = correlateRotation(target, H, p, e);
+    peak = C.argmax();
+    const Eigen::Matrix3d dR = rotationFromEuler(gridEuler(peak, p.bandwidth));
     R = dR * R;
     t = dR * t;
     const Eigen::Vector3d shift =
-        estimateShift(target.fine, (R * points).colwise() + t, p, e);
+        estimateShift(target.fine, (R * points).colwise() + t, p, e).shift;
     t += shift;
     e.passes = pass + 1;
     if (shift.norm() < settled)
       break;
   }
   // Finally the residual rotation from the final viewpoint, Newton-refined from the
-  // identity (it is within the grid spacing by now), and the matching shift.
-  const Eigen::Matrix3d dR = estimateRotation(target, (R * points).colwise() + t, p,
-                                              Eigen::Matrix3d::Identity(), true, e);
+  // identity (it is within the grid spacing by now), and the matching shift. The spread
+  // of the last grid around its peak and of the last 3-D correlation around its peak
+  // describe the uncertainty.
+  const Eigen::Matrix3d R_grid_pass = R;
+  const Eigen::Matrix3d R_grid_peak = rotationFromEuler(gridEuler(peak, p.bandwidth));
+  const SphericalSpectrum H_final = sourceSpectrum((R * points).colwise() + t, p, e);
+  const Eigen::Matrix3d dR =
+      refine(target, H_final, Eigen::Matrix3d::Identity(), p, value, e);
   R = dR * R;
   t = dR * t;
-  t += estimateShift(target.fine, (R * points).colwise() + t, p, e);
+  const SpatialCorrelationResult shift =
+      estimateShift(target.fine, (R * points).colwise() + t, p, e, &last_shift);
+  t += shift.shift;
+  e.translation_covariance = translationGaussian(last_shift, shift.index, 2).covariance;
+  (void)R_grid_pass;
+  (void)R_grid_peak;
+  rotationSamples(C, peak, R, e);
+  e.rotation_score =
+      value / (target.spherical_norm * std::sqrt(spectrumSquaredNorm(H_final)));
   e.rotation = R;
   e.translation = t;
   return e;

@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace pcl_phaser {
 
@@ -17,12 +18,22 @@ struct PhaserParameters {
   int spatial_grid_size = 128;   ///< voxels along the longest axis, 8..1024
   double voxel_size = 0.0;       ///< explicit voxel size in metres; 0 = from grid size
   int refinement_iterations = 3; ///< Newton iterations on SO(3), 0..10
+  int rotation_candidates = 3;   ///< distinct SO(3) peaks tried in pass 1, 1..10
   int passes = 3;      ///< at most; 1: one global pass; 2+: re-project, re-correlate
   int num_threads = 1; ///< worker threads, 1..64
 };
 
 /** \brief Empty when \a p is legal, else the reason (for PCL_ERROR). */
 std::string validateParameters(const PhaserParameters& p);
+
+/** \brief One distinct peak of the first global rotation search, taken through the
+ *  translation stage. */
+struct RotationHypothesis {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity(); ///< grid rotation
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();  ///< its translation
+  double rotation_score = 0.0; ///< normalised C at the grid peak
+  double overlap = 0.0;        ///< peak of the 3-D correlation: how well it overlaps
+};
 
 /** \brief What one registration found, in centred coordinates: for source points q_s
  * and target points q_t (each relative to its projection centre), q_t ~ R q_s + t. */
@@ -36,8 +47,17 @@ struct PhaserEstimate {
   double so3_ms = 0.0;            ///< SO(3) correlation and peak search
   double refinement_ms = 0.0;     ///< Newton refinement of the rotation
   double translation_ms = 0.0;    ///< voxelisation, 3-D FFT, correlation, peak
-  int passes = 0;                 ///< passes run
   double target_ms = 0.0; ///< target preparation (0 when it came from the cache)
+  int passes = 0;         ///< passes run
+  std::vector<RotationHypothesis> hypotheses; ///< pass-1 candidates, in peak order
+  int chosen_hypothesis = 0;                  ///< the one with the largest overlap
+  /** \brief Grid rotations around the last rotation peak, moved onto the estimate
+   *  (quaternions w, x, y, z), and their weights (correlation above the block's
+   * lowest). */
+  std::vector<Eigen::Vector4d> rotation_samples;
+  std::vector<double> rotation_weights;
+  /** \brief Weighted covariance of the last 3-D correlation peak (m^2, eq. 15). */
+  Eigen::Matrix3d translation_covariance = Eigen::Matrix3d::Zero();
 };
 
 /** \brief Everything that depends on the target alone (its spherical spectrum, its
