@@ -5,12 +5,15 @@
 #pragma once
 
 #include <pcl_phaser/core/pipeline.h>
+#include <pcl_phaser/point_channels.h>
 
 #include <pcl/registration/registration.h>
 
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace pcl {
 
@@ -148,6 +151,43 @@ public:
   /** \brief Get the number of passes. */
   int getNumberOfPasses() const { return params_.passes; }
 
+  /** \brief Fuse the intensity field, when the point type has one (default true).
+   *  \param[in] use whether to fuse it */
+  void setUseIntensity(bool use) { setChannel(phaser::CHANNEL_INTENSITY, use); }
+  /** \brief Whether the intensity field is fused when present. */
+  bool getUseIntensity() const { return channel_mask_ & phaser::CHANNEL_INTENSITY; }
+  /** \brief Fuse the reflectivity field (Ouster), when present (default true).
+   *  \param[in] use whether to fuse it */
+  void setUseReflectivity(bool use) { setChannel(phaser::CHANNEL_REFLECTIVITY, use); }
+  /** \brief Whether the reflectivity field is fused when present. */
+  bool getUseReflectivity() const
+  {
+    return channel_mask_ & phaser::CHANNEL_REFLECTIVITY;
+  }
+  /** \brief Fuse the ambient field (Ouster near-IR), when present (default true).
+   *  \param[in] use whether to fuse it */
+  void setUseAmbient(bool use) { setChannel(phaser::CHANNEL_AMBIENT, use); }
+  /** \brief Whether the ambient field is fused when present. */
+  bool getUseAmbient() const { return channel_mask_ & phaser::CHANNEL_AMBIENT; }
+  /** \brief Fuse colour (as luminance), when the point type has rgb/rgba (default
+   * true). \param[in] use whether to fuse it */
+  void setUseColor(bool use) { setChannel(phaser::CHANNEL_COLOR, use); }
+  /** \brief Whether colour is fused when present. */
+  bool getUseColor() const { return channel_mask_ & phaser::CHANNEL_COLOR; }
+  /** \brief The channels the next align() fuses: range plus those both point types have
+   *  and that are switched on (phaser::Channel flags). */
+  std::uint32_t getFusedChannels() const { return fusedChannels(); }
+
+  /** \brief Set the number of Laplacian pyramid levels of the channel fusion (1..8; 1
+   * is a plain average). Default 5. \param[in] levels number of levels */
+  void setFusionLevels(int levels)
+  {
+    params_.fusion_levels = levels;
+    invalidateTarget();
+  }
+  /** \brief Get the number of pyramid levels of the channel fusion. */
+  int getFusionLevels() const { return params_.fusion_levels; }
+
   /** \brief Set the number of worker threads (1..64); results are bit-identical for any
    *  count. Default 1. \param[in] nr_threads number of threads */
   void setNumberOfThreads(unsigned int nr_threads)
@@ -176,6 +216,42 @@ public:
   /** \brief Quality of the translation peak (see pcl_phaser::PhaserEstimate). */
   double getTranslationScore() const { return estimate_.translation_score; }
 
+  /** \brief Set how many distinct rotation peaks of the first global search are taken
+   *  through the translation stage (1..10); the one whose rotated source overlaps the
+   *  target most wins. More than one matters for scenes with symmetries (corridors,
+   *  tunnels, symmetric rooms). Default 3.
+   *  \param[in] nr_candidates number of rotation hypotheses */
+  void setNumberOfRotationCandidates(int nr_candidates)
+  {
+    params_.rotation_candidates = nr_candidates;
+  }
+  /** \brief Get the number of rotation hypotheses of the first global search. */
+  int getNumberOfRotationCandidates() const { return params_.rotation_candidates; }
+
+  /** \brief A hypothesis of the first global search, in the caller's frames. */
+  struct Candidate {
+    Matrix4 transformation;      ///< maps the source into the target frame
+    double rotation_score = 0.0; ///< normalised SO(3) correlation at its grid peak
+    double overlap = 0.0;        ///< peak of its 3-D correlation (larger is better)
+    bool chosen = false;         ///< the one the final estimate was refined from
+    PCL_MAKE_ALIGNED_OPERATOR_NEW
+  };
+
+  /** \brief The hypotheses of the last align(), in the order of their rotation peaks.
+   */
+  const std::vector<Candidate, Eigen::aligned_allocator<Candidate>>&
+  getCandidates() const
+  {
+    return candidates_;
+  }
+
+  /** \brief Covariance of the translation in metres^2 (target frame), from the spread
+   *  of the final 3-D correlation peak (paper eq. 15). */
+  Eigen::Matrix3d getTranslationCovariance() const
+  {
+    return estimate_.translation_covariance;
+  }
+
   /** \brief Everything the last align() measured: scores and the time of each stage. */
   const pcl_phaser::PhaserEstimate& getEstimate() const { return estimate_; }
 
@@ -195,14 +271,28 @@ protected:
 private:
   void invalidateTarget() { target_model_.reset(); }
 
+  void setChannel(phaser::Channel channel, bool use)
+  {
+    channel_mask_ = use ? (channel_mask_ | channel) : (channel_mask_ & ~channel);
+    invalidateTarget();
+  }
+
+  std::uint32_t fusedChannels() const
+  {
+    return channel_mask_ & phaser::availableChannels<PointSource>() &
+           phaser::availableChannels<PointTarget>();
+  }
+
   /** \brief Fails with PCL_ERROR, final transformation = guess, not converged. */
   void fail(PointCloudSource& output, const Matrix4& guess, const std::string& reason);
 
   pcl_phaser::PhaserParameters params_;
   ProjectionCenter center_ = ProjectionCenter::SensorOrigin;
+  std::uint32_t channel_mask_ = ~0u;
   std::shared_ptr<const pcl_phaser::TargetModel> target_model_;
   Eigen::Vector3d target_center_ = Eigen::Vector3d::Zero();
   pcl_phaser::PhaserEstimate estimate_;
+  std::vector<Candidate, Eigen::aligned_allocator<Candidate>> candidates_;
 
 public:
   PCL_MAKE_ALIGNED_OPERATOR_NEW

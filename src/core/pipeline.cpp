@@ -2,6 +2,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  */
+#include <pcl_phaser/core/cloud_signals.h>
 #include <pcl_phaser/core/error.h>
 #include <pcl_phaser/core/peak_neighbourhood.h>
 #include <pcl_phaser/core/pipeline.h>
@@ -39,27 +40,22 @@ SpatialGridParameters gridParameters(const PhaserParameters& p)
   return g;
 }
 
-/** Spectrum of a cloud on the sphere; throws when the cloud carries no spherical
- * signal. */
+/** Fused spherical spectrum of a cloud; throws when the cloud carries no spherical
+ *  signal. */
 SphericalSpectrum sphericalSpectrum(const Eigen::Matrix3Xd& points,
+                                    const ChannelValues& channels,
                                     const PhaserParameters& p, const char* which,
-                                    double* sampling_ms, double* sht_ms)
+                                    double& sampling_ms, double& sht_ms)
 {
-  auto t = Clock::now();
-  const SphericalSamples samples =
-      sampleSphere(points, p.bandwidth, nullptr, p.num_threads);
-  if (sampling_ms)
-    *sampling_ms = msSince(t);
-  if (samples.observed_cells < 2)
+  int observed = 0;
+  SphericalSpectrum F =
+      cloudSphericalSpectrum(points, channels, p.bandwidth, p.fusion_levels,
+                             p.num_threads, observed, sampling_ms, sht_ms);
+  if (observed < 2)
     throw InvalidArgument(
         std::string(which) +
         " cloud has fewer than two distinct directions from its "
         "projection centre (empty, all at the centre, or a single point)");
-  t = Clock::now();
-  SphericalSpectrum F = SphericalHarmonicTransform::instance(p.bandwidth)
-                            ->forward(samples.values.data(), p.num_threads);
-  if (sht_ms)
-    *sht_ms = msSince(t);
   if (!(spectrumSquaredNorm(F) > 0.0))
     throw InvalidArgument(std::string(which) + " cloud is constant on the sphere");
   return F;
@@ -70,9 +66,14 @@ SphericalSpectrum sphericalSpectrum(const Eigen::Matrix3Xd& points,
 class TargetModel {
 public:
   PhaserParameters params;
+  std::size_t channels = 0; ///< number of fused channels beyond the geometry
   SphericalSpectrum spherical;
   double spherical_norm = 0.0;
   SpatialSpectrum coarse; ///< whole target, padded: any shift up to half the extent
+  /** Occupancy only, when channels are fused: ranks rotation hypotheses by geometric
+   *  overlap (a fused peak mixes in zero-centred channel terms, which are no overlap).
+   */
+  SpatialSpectrum coarse_geometry, fine_geometry;
   SpatialSpectrum fine; ///< inner region, little padding: the residual of later passes
   double preparation_ms = 0.0;
 };
@@ -81,13 +82,10 @@ namespace {
 
 /** The source's spherical spectrum, timed. */
 SphericalSpectrum sourceSpectrum(const Eigen::Matrix3Xd& points,
+                                 const ChannelValues& channels,
                                  const PhaserParameters& p, PhaserEstimate& e)
 {
-  double sampling_ms = 0.0, sht_ms = 0.0;
-  SphericalSpectrum H = sphericalSpectrum(points, p, "source", &sampling_ms, &sht_ms);
-  e.sampling_ms += sampling_ms;
-  e.sht_ms += sht_ms;
-  return H;
+  return sphericalSpectrum(points, channels, p, "source", e.sampling_ms, e.sht_ms);
 }
 
 /** The global search: C on the SO(3) grid. */
@@ -120,14 +118,13 @@ Eigen::Matrix3d refine(const TargetModel& target, const SphericalSpectrum& H,
  */
 SpatialCorrelationResult estimateShift(const SpatialSpectrum& target,
                                        const Eigen::Matrix3Xd& points,
+                                       const ChannelValues& channels,
                                        const PhaserParameters& p, PhaserEstimate& e,
                                        SpatialVolume* volume = nullptr)
 {
   const auto t = Clock::now();
-  SpatialVoxelParameters voxel_params;
-  voxel_params.num_threads = p.num_threads;
-  const SpatialSpectrum S =
-      computeSpectrum(voxelize(target.grid, points, voxel_params));
+  const SpatialSpectrum S = cloudSpatialSpectrum(target.grid, points, channels,
+                                                 p.fusion_levels, p.num_threads);
   SpatialVolume C = correlateSpectra(target, S, p.num_threads);
   const SpatialCorrelationResult shift =
       findSpatialPeak(C, SpatialPeakRefinement::kGaussian, p.num_threads);
@@ -163,7 +160,7 @@ void rotationSamples(const So3CorrelationGrid& C, const So3GridIndex& peak,
 /** The target points inside the cube that holds the inner 75% of them (by distance from
  *  the centre): after the first pass the residual shift is small, so a fine grid over
  *  the densely observed region measures it best. */
-Eigen::Matrix3Xd innerRegion(const Eigen::Matrix3Xd& points)
+std::vector<Eigen::Index> innerRegion(const Eigen::Matrix3Xd& points)
 {
   std::vector<double> r(points.cols());
   for (Eigen::Index i = 0; i < points.cols(); ++i)
@@ -172,12 +169,10 @@ Eigen::Matrix3Xd innerRegion(const Eigen::Matrix3Xd& points)
   const std::size_t k = (sorted.size() * 3) / 4;
   std::nth_element(sorted.begin(), sorted.begin() + k, sorted.end());
   const double half = sorted[k];
-  Eigen::Matrix3Xd inner(3, points.cols());
-  Eigen::Index n = 0;
+  std::vector<Eigen::Index> inner;
   for (Eigen::Index i = 0; i < points.cols(); ++i)
     if (r[i] <= half)
-      inner.col(n++) = points.col(i);
-  inner.conservativeResize(3, n);
+      inner.push_back(i);
   return inner;
 }
 
@@ -199,6 +194,8 @@ std::string validateParameters(const PhaserParameters& p)
   if (p.rotation_candidates < 1 || p.rotation_candidates > 10)
     return "number of rotation candidates must be in [1, 10], got " +
            std::to_string(p.rotation_candidates);
+  if (p.fusion_levels < 1 || p.fusion_levels > 8)
+    return "fusion levels must be in [1, 8], got " + std::to_string(p.fusion_levels);
   if (p.passes < 1 || p.passes > 5)
     return "number of passes must be in [1, 5], got " + std::to_string(p.passes);
   if (p.num_threads < 1 || p.num_threads > 64)
@@ -207,29 +204,47 @@ std::string validateParameters(const PhaserParameters& p)
 }
 
 std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
-                                                 const PhaserParameters& params)
+                                                 const PhaserParameters& params,
+                                                 const ChannelValues& raw_channels)
 {
   const std::string problem = validateParameters(params);
   if (!problem.empty())
     throw InvalidArgument(problem);
   const auto start = Clock::now();
+  const ChannelValues channels = normalizeChannels(raw_channels, points.cols());
   auto model = std::make_shared<TargetModel>();
   model->params = params;
-  model->spherical = sphericalSpectrum(points, params, "target", nullptr, nullptr);
+  model->channels = channels.size();
+  double sampling_ms = 0.0, sht_ms = 0.0;
+  model->spherical =
+      sphericalSpectrum(points, channels, params, "target", sampling_ms, sht_ms);
   model->spherical_norm = std::sqrt(spectrumSquaredNorm(model->spherical));
-  SpatialVoxelParameters voxel_params;
-  voxel_params.num_threads = params.num_threads;
   SpatialGridParameters coarse_grid;
   coarse_grid.grid_size = params.spatial_grid_size;
-  model->coarse = computeSpectrum(
-      voxelize(makeSpatialGrid(points, coarse_grid), points, voxel_params));
+  const SpatialGrid coarse = makeSpatialGrid(points, coarse_grid);
+  model->coarse = cloudSpatialSpectrum(coarse, points, channels, params.fusion_levels,
+                                       params.num_threads);
+  if (!channels.empty())
+    model->coarse_geometry = cloudSpatialSpectrum(
+        coarse, points, {}, params.fusion_levels, params.num_threads);
   if (params.passes > 1) {
-    const Eigen::Matrix3Xd inner = innerRegion(points);
+    const std::vector<Eigen::Index> keep = innerRegion(points);
+    Eigen::Matrix3Xd inner(3, keep.size());
+    ChannelValues inner_channels(channels.size(), Eigen::VectorXd(keep.size()));
+    for (std::size_t i = 0; i < keep.size(); ++i) {
+      inner.col(i) = points.col(keep[i]);
+      for (std::size_t c = 0; c < channels.size(); ++c)
+        inner_channels[c][i] = channels[c][keep[i]];
+    }
     SpatialGridParameters fine_grid = gridParameters(params);
     fine_grid.padding = 0.1;
     fine_grid.min_margin = 2.0 * fine_grid.padding * inner.cwiseAbs().maxCoeff();
-    model->fine = computeSpectrum(
-        voxelize(makeSpatialGrid(inner, fine_grid), inner, voxel_params));
+    const SpatialGrid fine = makeSpatialGrid(inner, fine_grid);
+    model->fine = cloudSpatialSpectrum(fine, inner, inner_channels,
+                                       params.fusion_levels, params.num_threads);
+    if (!channels.empty())
+      model->fine_geometry = cloudSpatialSpectrum(fine, inner, {}, params.fusion_levels,
+                                                  params.num_threads);
   }
   model->preparation_ms = msSince(start);
   return model;
@@ -242,7 +257,8 @@ double preparationTime(const TargetModel& model)
 
 PhaserEstimate estimateTransform(const TargetModel& target,
                                  const Eigen::Matrix3Xd& points,
-                                 const PhaserParameters& p)
+                                 const PhaserParameters& p,
+                                 const ChannelValues& raw_channels)
 {
   const std::string problem = validateParameters(p);
   if (!problem.empty())
@@ -253,13 +269,17 @@ PhaserEstimate estimateTransform(const TargetModel& target,
     throw InvalidArgument("the target model was prepared with other parameters");
   if (p.passes > 1 && target.fine.coefficients.empty())
     throw InvalidArgument("the target model was prepared for a single pass");
+  if (raw_channels.size() != target.channels)
+    throw InvalidArgument("the source has " + std::to_string(raw_channels.size()) +
+                          " channels, the target " + std::to_string(target.channels));
+  const ChannelValues channels = normalizeChannels(raw_channels, points.cols());
   PhaserEstimate e;
   const bool single = p.passes == 1;
 
   // Pass 1: the global search about the source's own centre. Each of the best distinct
   // grid peaks (symmetric scenes have several) goes through the translation stage; the
   // one whose rotated source overlaps the target most wins.
-  SphericalSpectrum H = sourceSpectrum(points, p, e);
+  SphericalSpectrum H = sourceSpectrum(points, channels, p, e);
   So3CorrelationGrid C = correlateRotation(target, H, p, e);
   std::vector<So3GridIndex> peaks;
   if (p.rotation_candidates > 1)
@@ -272,12 +292,17 @@ PhaserEstimate estimateTransform(const TargetModel& target,
     RotationHypothesis hyp;
     hyp.rotation = rotationFromEuler(gridEuler(peaks[k], p.bandwidth));
     hyp.rotation_score = C(peaks[k]) / (target.spherical_norm * h_norm);
+    // Geometry alone ranks the hypotheses (see TargetModel::coarse_geometry).
+    const bool fused = target.channels > 0;
+    const ChannelValues none;
     SpatialCorrelationResult shift =
-        estimateShift(target.coarse, hyp.rotation * points, p, e);
+        estimateShift(fused ? target.coarse_geometry : target.coarse,
+                      hyp.rotation * points, none, p, e);
     hyp.translation = shift.shift;
     if (!single) {
-      shift = estimateShift(target.fine,
-                            (hyp.rotation * points).colwise() + hyp.translation, p, e);
+      shift = estimateShift(fused ? target.fine_geometry : target.fine,
+                            (hyp.rotation * points).colwise() + hyp.translation, none,
+                            p, e);
       hyp.translation += shift.shift;
     }
     hyp.overlap = shift.peak_value;
@@ -295,7 +320,7 @@ PhaserEstimate estimateTransform(const TargetModel& target,
   if (single) {
     R = refine(target, H, R, p, value, e);
     const SpatialCorrelationResult shift =
-        estimateShift(target.coarse, R * points, p, e, &last_shift);
+        estimateShift(target.coarse, R * points, channels, p, e, &last_shift);
     t = shift.shift;
     e.translation_covariance =
         translationGaussian(last_shift, shift.index, 2).covariance;
@@ -312,14 +337,14 @@ PhaserEstimate estimateTransform(const TargetModel& target,
   // viewpoint, so another would not change the rotation: stop there.
   const double settled = 0.25 * target.fine.grid.voxel_size;
   for (int pass = 1; pass < p.passes; ++pass) {
-    H = sourceSpectrum((R * points).colwise() + t, p, e);
+    H = sourceSpectrum((R * points).colwise() + t, channels, p, e);
     C = correlateRotation(target, H, p, e);
     peak = C.argmax();
     const Eigen::Matrix3d dR = rotationFromEuler(gridEuler(peak, p.bandwidth));
     R = dR * R;
     t = dR * t;
     const Eigen::Vector3d shift =
-        estimateShift(target.fine, (R * points).colwise() + t, p, e).shift;
+        estimateShift(target.fine, (R * points).colwise() + t, channels, p, e).shift;
     t += shift;
     e.passes = pass + 1;
     if (shift.norm() < settled)
@@ -331,13 +356,14 @@ PhaserEstimate estimateTransform(const TargetModel& target,
   // describe the uncertainty.
   const Eigen::Matrix3d R_grid_pass = R;
   const Eigen::Matrix3d R_grid_peak = rotationFromEuler(gridEuler(peak, p.bandwidth));
-  const SphericalSpectrum H_final = sourceSpectrum((R * points).colwise() + t, p, e);
+  const SphericalSpectrum H_final =
+      sourceSpectrum((R * points).colwise() + t, channels, p, e);
   const Eigen::Matrix3d dR =
       refine(target, H_final, Eigen::Matrix3d::Identity(), p, value, e);
   R = dR * R;
   t = dR * t;
-  const SpatialCorrelationResult shift =
-      estimateShift(target.fine, (R * points).colwise() + t, p, e, &last_shift);
+  const SpatialCorrelationResult shift = estimateShift(
+      target.fine, (R * points).colwise() + t, channels, p, e, &last_shift);
   t += shift.shift;
   e.translation_covariance = translationGaussian(last_shift, shift.index, 2).covariance;
   (void)R_grid_pass;

@@ -11,49 +11,64 @@
 
 namespace pcl_phaser {
 
-SphericalSamples sampleSphere(const Eigen::Matrix3Xd& points, int bandwidth,
-                              const Eigen::VectorXd* values, int num_threads)
+std::vector<int> sphereCells(const Eigen::Matrix3Xd& points, int bandwidth,
+                             int num_threads)
 {
   checkBandwidth(bandwidth);
-  if (values && values->size() != points.cols())
-    throw InvalidArgument("sampleSphere: one value per point is required");
-  const std::size_t cells = 4 * static_cast<std::size_t>(bandwidth) * bandwidth;
-  SphericalSamples out;
-  out.bandwidth = bandwidth;
-  out.values.assign(cells, 0.0);
-  std::vector<int> counts(cells, 0);
-  // Cell lookup (two atan2 per point) is a pure function of the point: parallel; the
-  // accumulation stays sequential in point order, so any thread count gives the same
-  // bits.
+  // Two atan2 per point, a pure function of the point: parallel, same result for any
+  // thread count.
   const Eigen::Index n = points.cols();
-  std::vector<int> cell_of(static_cast<std::size_t>(n));
+  std::vector<int> cells(static_cast<std::size_t>(n));
 #pragma omp parallel for num_threads(std::max(1, num_threads)) schedule(static)
   for (Eigen::Index i = 0; i < n; ++i)
-    cell_of[i] = cellIndex(points.col(i), bandwidth);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const int cell = cell_of[i];
-    if (cell < 0)
-      continue;
-    const double v = values ? (*values)[i] : points.col(i).norm();
-    if (!std::isfinite(v))
+    cells[i] = cellIndex(points.col(i), bandwidth);
+  return cells;
+}
+
+SphericalSamples binOnSphere(const std::vector<int>& cells,
+                             const Eigen::VectorXd& values, int bandwidth)
+{
+  checkBandwidth(bandwidth);
+  if (values.size() != static_cast<Eigen::Index>(cells.size()))
+    throw InvalidArgument("binOnSphere: one value per point is required");
+  const std::size_t count = 4 * static_cast<std::size_t>(bandwidth) * bandwidth;
+  SphericalSamples out;
+  out.bandwidth = bandwidth;
+  out.values.assign(count, 0.0);
+  std::vector<int> hits(count, 0);
+  // Sequential in point order: the sums do not depend on the thread count.
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const int cell = cells[i];
+    const double v = values[static_cast<Eigen::Index>(i)];
+    if (cell < 0 || !std::isfinite(v))
       continue;
     out.values[cell] += v;
-    ++counts[cell];
+    ++hits[cell];
   }
   double sum = 0.0;
-  for (std::size_t c = 0; c < cells; ++c)
-    if (counts[c]) {
-      out.values[c] /= counts[c];
+  for (std::size_t c = 0; c < count; ++c)
+    if (hits[c]) {
+      out.values[c] /= hits[c];
       sum += out.values[c];
       ++out.observed_cells;
     }
   if (out.observed_cells == 0)
     return out;
   const double mean = sum / out.observed_cells;
-  for (std::size_t c = 0; c < cells; ++c)
-    if (counts[c])
+  for (std::size_t c = 0; c < count; ++c)
+    if (hits[c])
       out.values[c] -= mean;
   return out;
+}
+
+SphericalSamples sampleSphere(const Eigen::Matrix3Xd& points, int bandwidth,
+                              const Eigen::VectorXd* values, int num_threads)
+{
+  if (values && values->size() != points.cols())
+    throw InvalidArgument("sampleSphere: one value per point is required");
+  const std::vector<int> cells = sphereCells(points, bandwidth, num_threads);
+  return binOnSphere(cells, values ? *values : Eigen::VectorXd(points.colwise().norm()),
+                     bandwidth);
 }
 
 } // namespace pcl_phaser

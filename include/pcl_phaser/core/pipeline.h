@@ -4,6 +4,8 @@
  */
 #pragma once
 
+#include <pcl_phaser/core/cloud_signals.h>
+
 #include <Eigen/Core>
 
 #include <memory>
@@ -18,7 +20,8 @@ struct PhaserParameters {
   int spatial_grid_size = 128;   ///< voxels along the longest axis, 8..1024
   double voxel_size = 0.0;       ///< explicit voxel size in metres; 0 = from grid size
   int refinement_iterations = 3; ///< Newton iterations on SO(3), 0..10
-  int rotation_candidates = 3;   ///< distinct SO(3) peaks tried in pass 1, 1..10
+  int fusion_levels = 5;       ///< Laplacian pyramid levels of the channel fusion, 1..8
+  int rotation_candidates = 3; ///< distinct SO(3) peaks tried in pass 1, 1..10
   int passes = 3;      ///< at most; 1: one global pass; 2+: re-project, re-correlate
   int num_threads = 1; ///< worker threads, 1..64
 };
@@ -67,10 +70,12 @@ class TargetModel;
 /** \brief Prepares a target.
  *  \param[in] points 3 x n target points relative to the target's projection centre
  *  \param[in] params parameters (bandwidth, grid)
+ *  \param[in] channels per-point channel values to fuse (normalised here, per cloud)
  *  \throws InvalidArgument when parameters are illegal or the points carry no signal
  *  (none finite, all at the centre, or all in one direction) */
 std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
-                                                 const PhaserParameters& params);
+                                                 const PhaserParameters& params,
+                                                 const ChannelValues& channels = {});
 
 /** \brief Time spent preparing \a model, in milliseconds. */
 double preparationTime(const TargetModel& model);
@@ -79,10 +84,12 @@ double preparationTime(const TargetModel& model);
  *  \param[in] target prepared with the same bandwidth and grid parameters
  *  \param[in] points 3 x n source points relative to the source's projection centre
  *  \param[in] params parameters
+ *  \param[in] channels the same channels as the target's (normalised here, per cloud)
  *  \throws InvalidArgument when parameters are illegal, do not match the target model,
  * or the source carries no signal */
 PhaserEstimate estimateTransform(const TargetModel& target,
                                  const Eigen::Matrix3Xd& points,
-                                 const PhaserParameters& params);
+                                 const PhaserParameters& params,
+                                 const ChannelValues& channels = {});
 
 } // namespace pcl_phaser

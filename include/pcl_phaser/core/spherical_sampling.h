@@ -30,4 +30,20 @@ SphericalSamples sampleSphere(const Eigen::Matrix3Xd& points, int bandwidth,
                               const Eigen::VectorXd* values = nullptr,
                               int num_threads = 1);
 
+/** \brief The Driscoll-Healy cell of every point (-1 for the centre and non-finite
+ *  points), computed once and shared by all channels of a cloud.
+ *  \param[in] points 3 x n, relative to the projection centre
+ *  \param[in] bandwidth B (1..256)
+ *  \param[in] num_threads worker threads; the result does not depend on it */
+std::vector<int> sphereCells(const Eigen::Matrix3Xd& points, int bandwidth,
+                             int num_threads = 1);
+
+/** \brief sampleSphere for precomputed cells: mean value per observed cell, de-meaned
+ *  over the observed cells, zero elsewhere.
+ *  \param[in] cells from sphereCells
+ *  \param[in] values one per point
+ *  \param[in] bandwidth B of the cells */
+SphericalSamples binOnSphere(const std::vector<int>& cells,
+                             const Eigen::VectorXd& values, int bandwidth);
+
 } // namespace pcl_phaser

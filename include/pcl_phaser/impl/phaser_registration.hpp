@@ -6,6 +6,7 @@
 
 #include <pcl_phaser/core/error.h>
 #include <pcl_phaser/phaser_registration.h>
+#include <pcl_phaser/point_channels.h>
 
 #include <pcl/common/point_tests.h>
 #include <pcl/common/transforms.h>
@@ -19,17 +20,36 @@ namespace pcl {
 
 namespace phaser_detail {
 
+using namespace pcl::phaser;
+
 /** \brief Beyond this, float32 coordinates are quantised to more than 6 cm. */
 constexpr float kMaxCoordinate = 1e6f;
 
-/** \brief Finite xyz of the selected points, as doubles, mapped by \a T; \a too_far is
- *  set when a coordinate exceeds kMaxCoordinate. */
+/** \brief Appends the value of channel \a C of \a p to \a values[k] when the mask has
+ * it. */
+template <Channel C, typename PointT>
+void appendChannel(const PointT& p, std::uint32_t mask,
+                   pcl_phaser::ChannelValues& values, std::size_t& k, Eigen::Index row)
+{
+  if constexpr ((availableChannels<PointT>() & C) != 0) {
+    if (mask & C)
+      values[k++][row] = channelValue<C>(p);
+  }
+}
+
+/** \brief Finite xyz of the selected points, as doubles, mapped by \a T, and the values
+ * of the channels in \a mask (in Channel order); \a too_far is set when a coordinate
+ *  exceeds kMaxCoordinate. */
 template <typename PointT, typename Indices>
-Eigen::Matrix3Xd finitePoints(const PointCloud<PointT>& cloud, const Indices* indices,
-                              const Eigen::Matrix4d& T, bool& too_far)
+Eigen::Matrix3Xd extractCloud(const PointCloud<PointT>& cloud, const Indices* indices,
+                              const Eigen::Matrix4d& T, std::uint32_t mask,
+                              pcl_phaser::ChannelValues& values, bool& too_far)
 {
   too_far = false;
   const std::size_t n = indices ? indices->size() : cloud.size();
+  mask &= availableChannels<PointT>() & ~static_cast<std::uint32_t>(CHANNEL_RANGE);
+  values.assign(static_cast<std::size_t>(__builtin_popcount(mask)),
+                Eigen::VectorXd(static_cast<Eigen::Index>(n)));
   Eigen::Matrix3Xd out(3, n);
   Eigen::Index count = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -39,9 +59,17 @@ Eigen::Matrix3Xd finitePoints(const PointCloud<PointT>& cloud, const Indices* in
     too_far = too_far || std::abs(p.x) > kMaxCoordinate ||
               std::abs(p.y) > kMaxCoordinate || std::abs(p.z) > kMaxCoordinate;
     const Eigen::Vector3d q(p.x, p.y, p.z);
-    out.col(count++) = T.topLeftCorner<3, 3>() * q + T.topRightCorner<3, 1>();
+    out.col(count) = T.topLeftCorner<3, 3>() * q + T.topRightCorner<3, 1>();
+    std::size_t k = 0;
+    appendChannel<CHANNEL_INTENSITY>(p, mask, values, k, count);
+    appendChannel<CHANNEL_REFLECTIVITY>(p, mask, values, k, count);
+    appendChannel<CHANNEL_AMBIENT>(p, mask, values, k, count);
+    appendChannel<CHANNEL_COLOR>(p, mask, values, k, count);
+    ++count;
   }
   out.conservativeResize(3, count);
+  for (Eigen::VectorXd& v : values)
+    v.conservativeResize(count);
   return out;
 }
 
@@ -99,6 +127,7 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
 {
   converged_ = false;
   estimate_ = {};
+  candidates_.clear();
   const std::string problem = pcl_phaser::validateParameters(params_);
   if (!problem.empty())
     return fail(output, guess, problem);
@@ -110,14 +139,15 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
                                      "worse than 6 cm there; shift the "
                                      "clouds first (e.g. pcl::demeanPointCloud)";
   double target_ms = 0.0;
+  pcl_phaser::ChannelValues target_channels;
   Eigen::Vector3d source_center = Eigen::Vector3d::Zero();
   try {
     // Target: prepared once per target and parameter set, relative to its centre.
     if (!target_model_) {
       bool too_far = false;
-      Eigen::Matrix3Xd tgt =
-          phaser_detail::finitePoints(*target_, static_cast<const Indices*>(nullptr),
-                                      Eigen::Matrix4d::Identity(), too_far);
+      Eigen::Matrix3Xd tgt = phaser_detail::extractCloud(
+          *target_, static_cast<const Indices*>(nullptr), Eigen::Matrix4d::Identity(),
+          fusedChannels(), target_channels, too_far);
       if (tgt.cols() == 0)
         return fail(output, guess, "the target cloud has no finite points");
       if (too_far)
@@ -126,14 +156,15 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
                            ? Eigen::Vector3d(tgt.rowwise().mean())
                            : Eigen::Vector3d::Zero();
       tgt.colwise() -= target_center_;
-      target_model_ = pcl_phaser::prepareTarget(tgt, params_);
+      target_model_ = pcl_phaser::prepareTarget(tgt, params_, target_channels);
       target_ms = pcl_phaser::preparationTime(*target_model_);
     }
     // Source: the points of indices_, finite, moved by the guess, relative to its
     // centre (its sensor origin moves with the guess too).
     bool too_far = false;
-    Eigen::Matrix3Xd src =
-        phaser_detail::finitePoints(*input_, indices_.get(), G, too_far);
+    pcl_phaser::ChannelValues source_channels;
+    Eigen::Matrix3Xd src = phaser_detail::extractCloud(
+        *input_, indices_.get(), G, fusedChannels(), source_channels, too_far);
     if (src.cols() == 0)
       return fail(output, guess, "the source cloud has no finite points");
     if (too_far)
@@ -142,7 +173,8 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
                         ? Eigen::Vector3d(src.rowwise().mean())
                         : Eigen::Vector3d(G.topRightCorner<3, 1>());
     src.colwise() -= source_center;
-    estimate_ = pcl_phaser::estimateTransform(*target_model_, src, params_);
+    estimate_ =
+        pcl_phaser::estimateTransform(*target_model_, src, params_, source_channels);
     estimate_.target_ms = target_ms;
   } catch (const pcl_phaser::InvalidArgument& e) {
     return fail(output, guess, e.what());
@@ -158,6 +190,19 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
   if (!final_transform.allFinite())
     return fail(output, guess, "the estimate is not finite");
   final_transformation_ = transformation_ = final_transform.cast<Scalar>();
+  for (std::size_t k = 0; k < estimate_.hypotheses.size(); ++k) {
+    const pcl_phaser::RotationHypothesis& h = estimate_.hypotheses[k];
+    Eigen::Matrix4d C = Eigen::Matrix4d::Identity();
+    C.topLeftCorner<3, 3>() = h.rotation;
+    C.topRightCorner<3, 1>() =
+        target_center_ + h.translation - h.rotation * source_center;
+    Candidate candidate;
+    candidate.transformation = (C * G).cast<Scalar>();
+    candidate.rotation_score = h.rotation_score;
+    candidate.overlap = h.overlap;
+    candidate.chosen = static_cast<int>(k) == estimate_.chosen_hypothesis;
+    candidates_.push_back(candidate);
+  }
   converged_ = true;
   phaser_detail::transformWhole(*input_, output, final_transformation_);
 }

@@ -1,0 +1,57 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ */
+#pragma once
+
+#include <pcl_phaser/core/spatial_correlation.h>
+#include <pcl_phaser/core/spherical_harmonics.h>
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace pcl_phaser {
+
+/** \brief Per-point values of the channels fused with the geometry (intensity,
+ *  reflectivity, ambient, luminance...), one vector per channel, in the same order for
+ *  target and source. */
+using ChannelValues = std::vector<Eigen::VectorXd>;
+
+/** \brief Each channel mapped robustly to a common scale (normalizeChannel: median
+ *  removed, divided by the scaled MAD, clamped), so raw uint16 reflectivity cannot
+ * drown metres of range. Per cloud. \throws InvalidArgument if a size differs from \a
+ * n. */
+ChannelValues normalizeChannels(const ChannelValues& channels, Eigen::Index n);
+
+/** \brief The fused spherical spectrum of a cloud: range (|p|) and every channel binned
+ *  on the sphere about the points' origin (shared cell lookup), one SHT each, fused by
+ *  the Laplacian pyramid over spherical degree (fuseSpherical). With no channels it is
+ *  the range spectrum.
+ *  \param[in] points 3 x n, relative to the projection centre
+ *  \param[in] channels normalised channel values (may be empty)
+ *  \param[in] bandwidth B
+ *  \param[in] levels pyramid levels
+ *  \param[in] num_threads worker threads
+ *  \param[out] observed_cells cells with at least one point
+ *  \param[out] sampling_ms, sht_ms time spent binning and transforming */
+SphericalSpectrum cloudSphericalSpectrum(const Eigen::Matrix3Xd& points,
+                                         const ChannelValues& channels, int bandwidth,
+                                         int levels, int num_threads,
+                                         int& observed_cells, double& sampling_ms,
+                                         double& sht_ms);
+
+/** \brief The fused voxel spectrum of a cloud on \a grid: occupancy (the geometry: mean
+ *  range per voxel is not translation invariant) and every channel (mean value times
+ *  soft occupancy), one r2c each, fused over radial frequency shells (fuseSpatial).
+ *  \param[in] grid the target's grid
+ *  \param[in] points 3 x n in the grid's frame
+ *  \param[in] channels normalised channel values (may be empty)
+ *  \param[in] levels pyramid levels
+ *  \param[in] num_threads worker threads */
+SpatialSpectrum cloudSpatialSpectrum(const SpatialGrid& grid,
+                                     const Eigen::Matrix3Xd& points,
+                                     const ChannelValues& channels, int levels,
+                                     int num_threads);
+
+} // namespace pcl_phaser

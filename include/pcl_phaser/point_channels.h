@@ -1,0 +1,86 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ */
+#pragma once
+
+#include <pcl/point_types.h> // has_field, has_intensity, has_color
+
+#include <cstdint>
+#include <type_traits>
+
+// Ouster-style drivers register these field tags; PCL 1.13 does not. Declaring them
+// here makes has_field<PointT, tag> false for types without them instead of a compile
+// error.
+namespace pcl {
+namespace fields {
+struct reflectivity;
+struct ambient;
+} // namespace fields
+} // namespace pcl
+
+namespace pcl {
+namespace phaser {
+
+/** \brief The signal channels PhaserRegistration fuses, as bit flags. */
+enum Channel : std::uint32_t {
+  CHANNEL_RANGE = 1u << 0,        ///< |p| from xyz (always available)
+  CHANNEL_INTENSITY = 1u << 1,    ///< the `intensity` field
+  CHANNEL_REFLECTIVITY = 1u << 2, ///< the `reflectivity` field (Ouster)
+  CHANNEL_AMBIENT = 1u << 3,      ///< the `ambient` field (Ouster near-IR)
+  CHANNEL_COLOR = 1u << 4         ///< luminance of `rgb`/`rgba`
+};
+
+/** \brief Which channels a point type carries. Specialise it for a type whose fields
+ *  PCL's traits cannot see, or to hide a field from the registration:
+ *  \code
+ *  template <> struct pcl::phaser::PointChannels<MyPoint> {
+ *    static constexpr bool intensity = false;   // MyPoint::intensity is not a return
+ * strength static constexpr bool reflectivity = true, ambient = false, color = false;
+ *  };
+ *  \endcode
+ *  Range always comes from xyz, never from a `range` field: drivers disagree on its
+ * unit (PCL's PointWithRange stores metres as float, Ouster stores millimetres as
+ * uint32). */
+template <typename PointT>
+struct PointChannels {
+  static constexpr bool intensity = pcl::traits::has_intensity_v<PointT>;
+  static constexpr bool reflectivity =
+      pcl::traits::has_field<PointT, pcl::fields::reflectivity>::value;
+  static constexpr bool ambient =
+      pcl::traits::has_field<PointT, pcl::fields::ambient>::value;
+  static constexpr bool color = pcl::traits::has_color_v<PointT>;
+};
+
+/** \brief The channel flags of \a PointT. */
+template <typename PointT>
+constexpr std::uint32_t availableChannels()
+{
+  using C = PointChannels<PointT>;
+  return CHANNEL_RANGE | (C::intensity ? CHANNEL_INTENSITY : 0u) |
+         (C::reflectivity ? CHANNEL_REFLECTIVITY : 0u) |
+         (C::ambient ? CHANNEL_AMBIENT : 0u) | (C::color ? CHANNEL_COLOR : 0u);
+}
+
+/** \brief Value of one non-range channel of a point; only the branches for fields the
+ * type has are instantiated. */
+template <Channel channel, typename PointT>
+float channelValue(const PointT& p)
+{
+  using C = PointChannels<PointT>;
+  if constexpr (channel == CHANNEL_INTENSITY && C::intensity)
+    return static_cast<float>(p.intensity);
+  else if constexpr (channel == CHANNEL_REFLECTIVITY && C::reflectivity)
+    return static_cast<float>(p.reflectivity);
+  else if constexpr (channel == CHANNEL_AMBIENT && C::ambient)
+    return static_cast<float>(p.ambient);
+  else if constexpr (channel == CHANNEL_COLOR && C::color)
+    return 0.299f * p.r + 0.587f * p.g + 0.114f * p.b; // ITU-R BT.601 luma
+  else {
+    static_assert(channel != CHANNEL_RANGE, "range comes from xyz");
+    return 0.0f;
+  }
+}
+
+} // namespace phaser
+} // namespace pcl

@@ -1,0 +1,83 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ */
+#include <pcl_phaser/core/cloud_signals.h>
+#include <pcl_phaser/core/error.h>
+#include <pcl_phaser/core/spectral_fusion.h>
+#include <pcl_phaser/core/spherical_sampling.h>
+
+#include <chrono>
+
+namespace pcl_phaser {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+} // namespace
+
+ChannelValues normalizeChannels(const ChannelValues& channels, Eigen::Index n)
+{
+  ChannelValues out;
+  for (const Eigen::VectorXd& c : channels) {
+    if (c.size() != n)
+      throw InvalidArgument("every channel needs one value per point");
+    out.push_back(normalizeChannel(c));
+  }
+  return out;
+}
+
+SphericalSpectrum cloudSphericalSpectrum(const Eigen::Matrix3Xd& points,
+                                         const ChannelValues& channels, int bandwidth,
+                                         int levels, int num_threads,
+                                         int& observed_cells, double& sampling_ms,
+                                         double& sht_ms)
+{
+  auto t = Clock::now();
+  const std::vector<int> cells = sphereCells(points, bandwidth, num_threads);
+  std::vector<SphericalSamples> samples;
+  samples.push_back(binOnSphere(cells, points.colwise().norm().transpose(), bandwidth));
+  for (const Eigen::VectorXd& c : channels)
+    samples.push_back(binOnSphere(cells, c, bandwidth));
+  observed_cells = samples.front().observed_cells;
+  sampling_ms += msSince(t);
+  t = Clock::now();
+  const auto sht = SphericalHarmonicTransform::instance(bandwidth);
+  std::vector<SphericalSpectrum> spectra;
+  for (const SphericalSamples& s : samples)
+    spectra.push_back(sht->forward(s.values.data(), num_threads));
+  FusionParameters fusion;
+  fusion.levels = levels;
+  fusion.num_threads = num_threads;
+  SphericalSpectrum fused =
+      spectra.size() == 1 ? std::move(spectra.front()) : fuseSpherical(spectra, fusion);
+  sht_ms += msSince(t);
+  return fused;
+}
+
+SpatialSpectrum cloudSpatialSpectrum(const SpatialGrid& grid,
+                                     const Eigen::Matrix3Xd& points,
+                                     const ChannelValues& channels, int levels,
+                                     int num_threads)
+{
+  SpatialVoxelParameters voxel;
+  voxel.num_threads = num_threads;
+  std::vector<SpatialSpectrum> spectra;
+  spectra.push_back(computeSpectrum(voxelize(grid, points, voxel)));
+  for (const Eigen::VectorXd& c : channels)
+    spectra.push_back(computeSpectrum(voxelize(grid, points, c, voxel)));
+  if (spectra.size() == 1)
+    return std::move(spectra.front());
+  FusionParameters fusion;
+  fusion.levels = levels;
+  fusion.num_threads = num_threads;
+  return fuseSpatial(spectra, fusion);
+}
+
+} // namespace pcl_phaser
