@@ -26,7 +26,10 @@ cmake --build "$build" -j"$(nproc)"
 
 case "$job" in
   demo)
-    "$build/tools/pcl_phaser_engine_benchmark" ;;
+    # The embedded default: a simulated 64-beam LiDAR pair a few metres and >100 degrees
+    # apart, registered globally and refined with ICP; prints the errors and writes an
+    # overlay for pcl_viewer into the current directory.
+    "$build/tools/pcl_phaser_align" --demo ;;
   test)
     cd "$build" && ctest --output-on-failure -j"$(nproc)" ;;
   *)

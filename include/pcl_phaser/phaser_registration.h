@@ -4,6 +4,7 @@
  */
 #pragma once
 
+#include <pcl_phaser/core/bingham.h>
 #include <pcl_phaser/core/pipeline.h>
 #include <pcl_phaser/point_channels.h>
 
@@ -210,6 +211,15 @@ public:
   /** \brief Get the centre of the spherical projection. */
   ProjectionCenter getProjectionCenter() const { return center_; }
 
+  /** \brief Set the smallest translation peak score (peak-to-sidelobe ratio of the
+   *  Laplacian of the final 3-D correlation) for which hasConverged() is true. Default
+   *  20: on the shared scans correct registrations scored 24-112 and registrations of
+   *  unrelated scenes 7-18 (see doc/benchmarks.md).
+   *  \param[in] score the threshold (>= 0) */
+  void setMinimumPeakScore(double score) { min_peak_score_ = score; }
+  /** \brief Get the smallest translation peak score that counts as converged. */
+  double getMinimumPeakScore() const { return min_peak_score_; }
+
   /** \brief Normalised SO(3) correlation at the estimated rotation, in [-1, 1]. */
   double getRotationScore() const { return estimate_.rotation_score; }
 
@@ -252,6 +262,21 @@ public:
     return estimate_.translation_covariance;
   }
 
+  /** \brief Bingham distribution of the rotation (orientation M, concentrations Z, mode
+   *  = the estimate), fitted by maximum likelihood to the grid rotations around the
+   * last SO(3) correlation peak weighted by their correlation (paper eqs. 6, 7, 11,
+   * 12). Quaternions are (w, x, y, z); the spread is expressed in the target frame.
+   * Computed on first call after align(). */
+  const pcl_phaser::BinghamDistribution& getRotationUncertainty() const;
+
+  /** \brief 6x6 covariance of the pose error, ordered (rotation vector [rad],
+   * translation [m]) for omega = Log(R_true R_est^T) and nu = t_true - t_est, so its
+   * inverse can serve as the information matrix of a pose-graph edge. The translation
+   * block adds to the Gaussian of the 3-D correlation peak the effect of the rotation
+   * error on the translation through the lever arm of the source centre. Zero before a
+   * successful align(). */
+  Eigen::Matrix<double, 6, 6> getCovariance() const;
+
   /** \brief Everything the last align() measured: scores and the time of each stage. */
   const pcl_phaser::PhaserEstimate& getEstimate() const { return estimate_; }
 
@@ -289,10 +314,15 @@ private:
   pcl_phaser::PhaserParameters params_;
   ProjectionCenter center_ = ProjectionCenter::SensorOrigin;
   std::uint32_t channel_mask_ = ~0u;
+  double min_peak_score_ = 20.0;
   std::shared_ptr<const pcl_phaser::TargetModel> target_model_;
   Eigen::Vector3d target_center_ = Eigen::Vector3d::Zero();
   pcl_phaser::PhaserEstimate estimate_;
   std::vector<Candidate, Eigen::aligned_allocator<Candidate>> candidates_;
+  /** \brief R c_s of the last align(): how far the rotation error moves the
+   * translation. */
+  Eigen::Vector3d lever_arm_ = Eigen::Vector3d::Zero();
+  mutable std::shared_ptr<pcl_phaser::BinghamDistribution> rotation_uncertainty_;
 
 public:
   PCL_MAKE_ALIGNED_OPERATOR_NEW

@@ -7,6 +7,7 @@
 #include <pcl_phaser/core/spectral_fusion.h>
 #include <pcl_phaser/core/spherical_sampling.h>
 
+#include <algorithm>
 #include <chrono>
 
 namespace pcl_phaser {
@@ -14,6 +15,9 @@ namespace pcl_phaser {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+/** Points per cloud that enter one voxelisation (see cloudSpatialSpectrum). */
+constexpr Eigen::Index kMaxSpatialPoints = 40000;
 
 double msSince(Clock::time_point start)
 {

@@ -120,15 +120,17 @@ SpatialCorrelationResult estimateShift(const SpatialSpectrum& target,
                                        const Eigen::Matrix3Xd& points,
                                        const ChannelValues& channels,
                                        const PhaserParameters& p, PhaserEstimate& e,
-                                       SpatialVolume* volume = nullptr)
+                                       SpatialVolume* volume = nullptr,
+                                       bool with_score = false)
 {
   const auto t = Clock::now();
   const SpatialSpectrum S = cloudSpatialSpectrum(target.grid, points, channels,
                                                  p.fusion_levels, p.num_threads);
   SpatialVolume C = correlateSpectra(target, S, p.num_threads);
   const SpatialCorrelationResult shift =
-      findSpatialPeak(C, SpatialPeakRefinement::kGaussian, p.num_threads);
-  e.translation_score = shift.score;
+      findSpatialPeak(C, SpatialPeakRefinement::kGaussian, p.num_threads, with_score);
+  if (with_score)
+    e.translation_score = shift.score;
   e.translation_ms += msSince(t);
   if (volume)
     *volume = std::move(C);
@@ -292,19 +294,12 @@ PhaserEstimate estimateTransform(const TargetModel& target,
     RotationHypothesis hyp;
     hyp.rotation = rotationFromEuler(gridEuler(peaks[k], p.bandwidth));
     hyp.rotation_score = C(peaks[k]) / (target.spherical_norm * h_norm);
-    // Geometry alone ranks the hypotheses (see TargetModel::coarse_geometry).
-    const bool fused = target.channels > 0;
-    const ChannelValues none;
-    SpatialCorrelationResult shift =
-        estimateShift(fused ? target.coarse_geometry : target.coarse,
-                      hyp.rotation * points, none, p, e);
+    // Geometry alone ranks the hypotheses (see TargetModel::coarse_geometry), on the
+    // coarse grid: only the winner pays for the fine one.
+    const SpatialCorrelationResult shift =
+        estimateShift(target.channels > 0 ? target.coarse_geometry : target.coarse,
+                      hyp.rotation * points, ChannelValues{}, p, e);
     hyp.translation = shift.shift;
-    if (!single) {
-      shift = estimateShift(fused ? target.fine_geometry : target.fine,
-                            (hyp.rotation * points).colwise() + hyp.translation, none,
-                            p, e);
-      hyp.translation += shift.shift;
-    }
     hyp.overlap = shift.peak_value;
     e.hypotheses.push_back(hyp);
     if (hyp.overlap > e.hypotheses[best].overlap)
@@ -313,6 +308,13 @@ PhaserEstimate estimateTransform(const TargetModel& target,
   e.chosen_hypothesis = static_cast<int>(best);
   Eigen::Matrix3d R = e.hypotheses[best].rotation;
   Eigen::Vector3d t = e.hypotheses[best].translation;
+  // Intermediate shifts only steer the viewpoint of the next pass: geometry suffices;
+  // the channels are fused into the final shift.
+  const bool fused = target.channels > 0;
+  const ChannelValues none;
+  const SpatialSpectrum& fine_geometry = fused ? target.fine_geometry : target.fine;
+  if (!single) // the winner's residual shift on the fine grid
+    t += estimateShift(fine_geometry, (R * points).colwise() + t, none, p, e).shift;
   So3GridIndex peak = peaks[best];
   e.passes = 1;
   double value = C(peak);
@@ -320,7 +322,7 @@ PhaserEstimate estimateTransform(const TargetModel& target,
   if (single) {
     R = refine(target, H, R, p, value, e);
     const SpatialCorrelationResult shift =
-        estimateShift(target.coarse, R * points, channels, p, e, &last_shift);
+        estimateShift(target.coarse, R * points, channels, p, e, &last_shift, true);
     t = shift.shift;
     e.translation_covariance =
         translationGaussian(last_shift, shift.index, 2).covariance;
@@ -344,7 +346,7 @@ PhaserEstimate estimateTransform(const TargetModel& target,
     R = dR * R;
     t = dR * t;
     const Eigen::Vector3d shift =
-        estimateShift(target.fine, (R * points).colwise() + t, channels, p, e).shift;
+        estimateShift(fine_geometry, (R * points).colwise() + t, none, p, e).shift;
     t += shift;
     e.passes = pass + 1;
     if (shift.norm() < settled)
@@ -363,7 +365,7 @@ PhaserEstimate estimateTransform(const TargetModel& target,
   R = dR * R;
   t = dR * t;
   const SpatialCorrelationResult shift = estimateShift(
-      target.fine, (R * points).colwise() + t, channels, p, e, &last_shift);
+      target.fine, (R * points).colwise() + t, channels, p, e, &last_shift, true);
   t += shift.shift;
   e.translation_covariance = translationGaussian(last_shift, shift.index, 2).covariance;
   (void)R_grid_pass;

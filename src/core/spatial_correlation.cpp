@@ -501,7 +501,7 @@ SpatialVolume correlateSpectra(const SpatialSpectrum& target,
 
 SpatialCorrelationResult findSpatialPeak(const SpatialVolume& correlation,
                                          SpatialPeakRefinement refinement,
-                                         int num_threads)
+                                         int num_threads, bool with_score)
 {
   checkVolume(correlation, "findSpatialPeak");
   const int threads = resolveThreads(num_threads);
@@ -546,7 +546,8 @@ SpatialCorrelationResult findSpatialPeak(const SpatialVolume& correlation,
     result.lag[a] = wrapLag(result.index[a], grid.dims[a]) + offset[a];
   result.shift = grid.origin + result.lag * grid.voxel_size;
 
-  result.score = peakScore(correlation, result.index, threads);
+  if (with_score)
+    result.score = peakScore(correlation, result.index, threads);
   return result;
 }
 

@@ -295,14 +295,15 @@ struct SpatialCorrelationResult {
 };
 
 /** \brief Finds and refines the maximum of a correlation volume from correlateSpectra.
- *  Ties go to the lowest flat index; neighbours wrap around. Deterministic for any \a
- *  num_threads. An all-zero volume (empty source or target) gives lag index 0, peak
- *  value 0 and score 0.
- *  \throws InvalidArgument if the volume is invalid or num_threads < 0. */
+ *  Ties go to the lowest flat index; neighbours wrap around. Without \a with_score the
+ *  peak-to-sidelobe score (a pass over the whole volume) is left at 0. Deterministic
+ * for any \a num_threads. An all-zero volume (empty source or target) gives lag index
+ * 0, peak value 0 and score 0. \throws InvalidArgument if the volume is invalid or
+ * num_threads < 0. */
 SpatialCorrelationResult
 findSpatialPeak(const SpatialVolume& correlation,
                 SpatialPeakRefinement refinement = SpatialPeakRefinement::kGaussian,
-                int num_threads = 1);
+                int num_threads = 1, bool with_score = true);
 
 /** \brief correlateSpectra followed by findSpatialPeak. */
 SpatialCorrelationResult

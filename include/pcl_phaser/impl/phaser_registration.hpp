@@ -128,9 +128,13 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
   converged_ = false;
   estimate_ = {};
   candidates_.clear();
+  rotation_uncertainty_.reset();
+  lever_arm_.setZero();
   const std::string problem = pcl_phaser::validateParameters(params_);
   if (!problem.empty())
     return fail(output, guess, problem);
+  if (!(min_peak_score_ >= 0.0))
+    return fail(output, guess, "the minimum peak score must be >= 0");
   const Eigen::Matrix4d G = guess.template cast<double>();
   if (!G.allFinite())
     return fail(output, guess, "the initial guess is not finite");
@@ -190,6 +194,7 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
   if (!final_transform.allFinite())
     return fail(output, guess, "the estimate is not finite");
   final_transformation_ = transformation_ = final_transform.cast<Scalar>();
+  lever_arm_ = estimate_.rotation * source_center;
   for (std::size_t k = 0; k < estimate_.hypotheses.size(); ++k) {
     const pcl_phaser::RotationHypothesis& h = estimate_.hypotheses[k];
     Eigen::Matrix4d C = Eigen::Matrix4d::Identity();
@@ -203,8 +208,53 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
     candidate.chosen = static_cast<int>(k) == estimate_.chosen_hypothesis;
     candidates_.push_back(candidate);
   }
-  converged_ = true;
+  // A distinct translation peak is the evidence that the rotated source really overlaps
+  // the target; unrelated scenes give flat correlations.
+  converged_ = estimate_.translation_score >= min_peak_score_;
+  if (!converged_)
+    PCL_DEBUG("[pcl::%s::computeTransformation] translation peak score %g is below %g: "
+              "not converged\n",
+              getClassName().c_str(), estimate_.translation_score, min_peak_score_);
   phaser_detail::transformWhole(*input_, output, final_transformation_);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+const pcl_phaser::BinghamDistribution&
+PhaserRegistration<PointSource, PointTarget, Scalar>::getRotationUncertainty() const
+{
+  if (!rotation_uncertainty_) {
+    pcl_phaser::BinghamDistribution b; // uniform: what is known without an estimate
+    if (!estimate_.rotation_samples.empty()) {
+      try {
+        b = pcl_phaser::fitBingham(estimate_.rotation_samples,
+                                   estimate_.rotation_weights);
+      } catch (const pcl_phaser::InvalidArgument&) { // all weights zero: a flat block
+      }
+    }
+    rotation_uncertainty_ = std::make_shared<pcl_phaser::BinghamDistribution>(b);
+  }
+  return *rotation_uncertainty_;
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+Eigen::Matrix<double, 6, 6>
+PhaserRegistration<PointSource, PointTarget, Scalar>::getCovariance() const
+{
+  Eigen::Matrix<double, 6, 6> cov = Eigen::Matrix<double, 6, 6>::Zero();
+  if (!converged_)
+    return cov;
+  const Eigen::Matrix3d rot = getRotationUncertainty().tangentCovariance();
+  // t_est = c_t + delta - R c_s, R_true = Exp(omega) R_est: nu = d_delta + [R c_s]x
+  // omega.
+  Eigen::Matrix3d lever;
+  lever << 0, -lever_arm_.z(), lever_arm_.y(), lever_arm_.z(), 0, -lever_arm_.x(),
+      -lever_arm_.y(), lever_arm_.x(), 0;
+  cov.topLeftCorner<3, 3>() = rot;
+  cov.topRightCorner<3, 3>() = rot * lever.transpose();
+  cov.bottomLeftCorner<3, 3>() = lever * rot;
+  cov.bottomRightCorner<3, 3>() =
+      estimate_.translation_covariance + lever * rot * lever.transpose();
+  return cov;
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar>

@@ -1,0 +1,445 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright (c) 2026, the pcl_phaser developers.
+//
+/** \file pcl_phaser_align.cpp
+ * \brief pcl_phaser_align: global registration of two point clouds with
+ * pcl::PhaserRegistration, optionally refined by ICP.
+ *
+ *   pcl_phaser_align SOURCE TARGET [options]   (.pcd, .ply or KITTI .bin)
+ *   pcl_phaser_align [--demo] [options]        (simulated LiDAR pair, known truth)
+ *
+ * Prints T_target_source (p_target = T p_source), the scores, the stage timings and,
+ * when the truth is known (--gt, the demo), the rotation and translation errors; can
+ * write the aligned source (-o), a red/green overlay (-m) and a PNG of it
+ * (--screenshot), or print one JSON object (--json). Options and exit codes:
+ * printHelp(). Helpers: pcl_phaser_align_{options,steps,json}.h and
+ * pcl_phaser_align_screenshot.{h,cpp}.
+ */
+#include "pcl_phaser_align_json.h"
+#include "pcl_phaser_align_options.h"
+#include "pcl_phaser_align_screenshot.h"
+#include "scan_simulator.h"
+
+#include <pcl_phaser/cloud_io.h>
+#include <pcl_phaser/phaser_registration.h>
+
+#include <pcl/common/transforms.h>
+#include <pcl/console/print.h>
+#include <pcl/console/time.h>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <unistd.h>
+
+using namespace pcl::console;
+namespace align = pcl::phaser::align;
+namespace json = pcl::phaser::json;
+using namespace pcl::phaser::align;
+
+namespace {
+
+const double kPi = 3.14159265358979323846;
+
+struct Result {
+  Stage global, icp;
+  pcl_phaser::PhaserEstimate estimate;
+  std::size_t source_points = 0, target_points = 0;
+  pcl::PointCloud<pcl::PointXYZRGB>::Ptr overlay;
+  /** \brief ICP's transform when it ran and converged, else PHASER's. */
+  const Eigen::Matrix4d& final() const
+  {
+    return (icp.converged ? icp.transform : global.transform);
+  }
+};
+
+void printHelp(int, char** argv)
+{
+  const pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> d; // the class defaults
+  print_error("Syntax is: %s SOURCE TARGET <options>\n"
+              "       or: %s [--demo] <options>\n",
+              argv[0], argv[0]);
+  print_info(
+      "  Registers SOURCE onto TARGET (.pcd, .ply or KITTI .bin) with PHASER and "
+      "prints\n  T_target_source (p_target = T * p_source). Options:\n"
+      "    -b, --bandwidth B   = spherical bandwidth, 1..256 (default: %d)\n"
+      "    --grid N            = translation grid voxels along the longest axis, "
+      "8..1024 (default: %d)\n"
+      "    --passes K          = registration passes, 1..5 (default: %d)\n"
+      "    --centre MODE       = projection centre: sensor (each cloud's origin, for "
+      "LiDAR scans) or centroid (default: sensor)\n"
+      "    --threads T         = worker threads, 1..64 (default: %u; the demo: %d)\n",
+      d.getBandwidth(), d.getSpatialGridSize(), d.getNumberOfPasses(),
+      d.getNumberOfThreads(), default_demo_threads);
+  print_info(
+      "    -icp                = refine with point-to-plane ICP "
+      "(pcl::IterativeClosestPointWithNormals, normals\n"
+      "                          from %d neighbours) from the PHASER estimate: %d "
+      "iterations, transformation epsilon %g\n"
+      "    --icp-point         = with -icp: plain point-to-point "
+      "pcl::IterativeClosestPoint instead\n"
+      "    --icp-dist D        = ICP max correspondence distance in m (default: %g)\n"
+      "    -o FILE             = save SOURCE moved by the final transform, all fields "
+      "kept (.pcd/.ply/.bin)\n"
+      "    -m FILE             = save the overlay, aligned source red + target green "
+      "(PointXYZRGB, .pcd/.ply); view: pcl_viewer FILE\n"
+      "    --screenshot F.png  = render the overlay top-down to a PNG; needs X, e.g. "
+      "xvfb-run -a -s \"-screen 0 1280x1024x24\" ...\n"
+      "    --size WxH          = screenshot size in pixels, 16..8192 (default: %dx%d)\n"
+      "    --gt FILE           = the true T_target_source (4x4 or 3x4 text): report "
+      "RRE (deg) and RTE (m)\n"
+      "    --json              = print one JSON object on stdout, everything else on "
+      "stderr\n",
+      icp_normal_neighbours, icp_iterations, icp_transformation_epsilon,
+      default_icp_distance, default_width, default_height);
+  print_info(
+      "    --demo              = the embedded demo, also run with no arguments: a "
+      "simulated LiDAR pair, -icp,\n"
+      "                          errors against the truth, overlay in ./%s (or -m). "
+      "It fails (exit 4)\n"
+      "                          unless PHASER is within %g deg / %g m and ICP within "
+      "%g deg / %g m of the truth\n"
+      "    --seed S            = demo seed, 0..%d (default: %d)\n"
+      "    -h, --help          = this help\n"
+      "  Exit codes: 0 success, 1 usage or bad option, 2 bad input file (cloud or "
+      "--gt), 3 not converged (nothing is\n"
+      "  written), 4 demo outside its bounds, 5 output not written (also: no X "
+      "display for --screenshot).\n",
+      default_demo_overlay, demo_rre_deg, demo_rte_m, demo_icp_rre_deg, demo_icp_rte_m,
+      INT_MAX, default_seed);
+}
+
+// ---- load, register, refine -------------------------------------------------------
+
+bool loadCloud(const std::string& path, pcl::PCLPointCloud2& cloud)
+{
+  TicToc tt;
+  tt.tic();
+  print_highlight("Loading ");
+  print_value("%s ", path.c_str());
+  std::string error;
+  if (!pcl::phaser::loadCloud(path, cloud, &error)) {
+    print_info("[failed]\n");
+    return (fail(kInput, "Cannot load the cloud: %s", error.c_str()), false);
+  }
+  print_info("[done, ");
+  print_value("%g", tt.toc());
+  print_info(" ms : ");
+  print_value("%u", cloud.width * cloud.height);
+  print_info(" points]\nAvailable dimensions: ");
+  std::string names;
+  for (const std::string& n : pcl::phaser::getCloudFieldInfo(cloud).names)
+    names += n + " ";
+  print_value("%s\n", names.c_str());
+  for (const char* axis : {"x", "y", "z"})
+    if (!align::isFloatField(cloud, pcl::getFieldIndex(cloud, axis)))
+      return (fail(kInput, "'%s' has no float32/float64 %s field.", path.c_str(), axis),
+              false);
+  if (cloud.width * cloud.height == 0)
+    return (fail(kInput, "'%s' holds no points.", path.c_str()), false);
+  return (true);
+}
+
+template <typename PointT>
+int compute(const pcl::PCLPointCloud2& source_blob,
+            const pcl::PCLPointCloud2& target_blob, const Options& opt, Result& res)
+{
+  using Cloud = pcl::PointCloud<PointT>;
+  const typename Cloud::Ptr source = align::toFiniteCloud<PointT>(source_blob);
+  const typename Cloud::Ptr target = align::toFiniteCloud<PointT>(target_blob);
+  if (source->empty() || target->empty())
+    return (fail(kInput, "The %s cloud has no finite points.",
+                 source->empty() ? "source" : "target"));
+  res.source_points = source->size();
+  res.target_points = target->size();
+
+  pcl::PhaserRegistration<PointT, PointT> phaser;
+  if (opt.bandwidth)
+    phaser.setBandwidth(opt.bandwidth);
+  if (opt.grid)
+    phaser.setSpatialGridSize(opt.grid);
+  if (opt.passes)
+    phaser.setNumberOfPasses(opt.passes);
+  if (opt.threads || opt.demo)
+    phaser.setNumberOfThreads(opt.threads ? opt.threads : default_demo_threads);
+  using Center = typename pcl::PhaserRegistration<PointT, PointT>::ProjectionCenter;
+  phaser.setProjectionCenter(opt.centroid ? Center::Centroid : Center::SensorOrigin);
+  phaser.setInputSource(source);
+  phaser.setInputTarget(target);
+  print_highlight("Registering ");
+  print_info("%zu source to %zu target points as %s (bandwidth %d, grid %d, passes %d, "
+             "threads %u, centre %s) ",
+             source->size(), target->size(),
+             pcl::traits::has_intensity_v<PointT> ? "PointXYZI" : "PointXYZ",
+             phaser.getBandwidth(), phaser.getSpatialGridSize(),
+             phaser.getNumberOfPasses(), phaser.getNumberOfThreads(),
+             opt.centroid ? "centroid" : "sensor");
+  TicToc tt;
+  tt.tic();
+  Cloud aligned;
+  phaser.align(aligned);
+  res.global.time_ms = tt.toc();
+  res.global.ran = true;
+  res.global.converged = phaser.hasConverged();
+  res.global.transform = phaser.getFinalTransformation().template cast<double>();
+  res.estimate = phaser.getEstimate();
+  print_info("[done, ");
+  print_value("%g", res.global.time_ms);
+  print_info(" ms : %s]\n", res.global.converged ? "converged" : "NOT converged");
+  if (opt.icp && res.global.converged) {
+    print_highlight("Refining with %s ICP ",
+                    opt.icp_point ? "point-to-point" : "point-to-plane");
+    align::IcpSettings icp;
+    icp.max_distance = opt.icp_distance;
+    icp.iterations = icp_iterations;
+    icp.transformation_epsilon = icp_transformation_epsilon;
+    icp.normal_neighbours = icp_normal_neighbours;
+    icp.point_to_point = opt.icp_point;
+    icp.threads = phaser.getNumberOfThreads();
+    align::refine<PointT>(source, target, res.global.transform, icp, res.icp);
+    print_info("[done, ");
+    print_value("%g", res.icp.time_ms);
+    print_info(" ms : %s]\n", res.icp.converged ? "converged" : "NOT converged");
+  }
+  // The overlay: finite source points moved by the final transform in red, the target
+  // in green.
+  Cloud moved;
+  pcl::transformPointCloud(*source, moved, res.final());
+  res.overlay = pcl::make_shared<pcl::PointCloud<pcl::PointXYZRGB>>();
+  res.overlay->reserve(moved.size() + target->size());
+  for (const PointT& p : moved)
+    res.overlay->push_back(pcl::PointXYZRGB(p.x, p.y, p.z, 255, 0, 0));
+  for (const PointT& p : *target)
+    res.overlay->push_back(pcl::PointXYZRGB(p.x, p.y, p.z, 0, 160, 0));
+  return (kOk);
+}
+
+// ---- report ---------------------------------------------------------------------
+
+void printStage(const char* title, const Stage& s)
+{
+  print_highlight("%s", title);
+  print_info(" T_target_source (%s):\n", s.converged ? "converged" : "NOT converged");
+  for (int r = 0; r < 4; ++r)
+    print_value("    %12.6f %12.6f %12.6f %12.6f\n", s.transform(r, 0),
+                s.transform(r, 1), s.transform(r, 2), s.transform(r, 3));
+  if (std::isfinite(s.rre_deg)) {
+    print_info("    rotation error RRE: ");
+    print_value("%.4f deg", s.rre_deg);
+    print_info("   translation error RTE: ");
+    print_value("%.4f m\n", s.rte_m);
+  }
+}
+
+void printReport(const Result& res)
+{
+  const pcl_phaser::PhaserEstimate& e = res.estimate;
+  printStage("PHASER", res.global);
+  print_info("    rotation score %.4f, translation score %.4f, passes %d\n"
+             "    stages (ms): target %.1f, sampling %.1f, sht %.1f, so3 %.1f, "
+             "refinement %.1f, translation %.1f; total %.1f\n",
+             e.rotation_score, e.translation_score, e.passes, e.target_ms,
+             e.sampling_ms, e.sht_ms, e.so3_ms, e.refinement_ms, e.translation_ms,
+             res.global.time_ms);
+  if (res.icp.ran)
+    printStage("After ICP", res.icp);
+}
+
+std::string toJson(const Result& res, const Options& opt, int code, double total_ms)
+{
+  json::Object o;
+  if (res.global.ran) {
+    const pcl_phaser::PhaserEstimate& e = res.estimate;
+    o = json::stage(res.global);
+    json::Object stages;
+    stages.add("target", json::number(e.target_ms))
+        .add("sampling", json::number(e.sampling_ms))
+        .add("sht", json::number(e.sht_ms))
+        .add("so3", json::number(e.so3_ms))
+        .add("refinement", json::number(e.refinement_ms))
+        .add("translation", json::number(e.translation_ms));
+    o.add("rotation_score", json::number(e.rotation_score))
+        .add("translation_score", json::number(e.translation_score))
+        .add("passes", std::to_string(e.passes))
+        .add("stages_ms", stages.str())
+        .add("source_points", std::to_string(res.source_points))
+        .add("target_points", std::to_string(res.target_points));
+    if (res.icp.ran)
+      o.add("icp", json::stage(res.icp)
+                       .add("method", json::quote(opt.icp_point ? "point_to_point"
+                                                                : "point_to_plane"))
+                       .str());
+  }
+  if (opt.demo)
+    o.add("demo_seed", std::to_string(opt.seed));
+  o.add("total_ms", json::number(total_ms));
+  if (code != kOk)
+    o.add("error", json::quote(last_error));
+  return (o.add("exit_code", std::to_string(code)).str());
+}
+
+// ---- output -----------------------------------------------------------------------
+
+/** \brief Write -o, -m and --screenshot. */
+int saveOutputs(const Options& opt, pcl::PCLPointCloud2& source_blob, const Result& res)
+{
+  TicToc tt;
+  std::string error;
+  const auto done = [&](std::size_t points) {
+    print_info("[done, ");
+    print_value("%g", tt.toc());
+    print_info(" ms : ");
+    print_value("%zu", points);
+    print_info(" points]\n");
+  };
+  if (!opt.output.empty()) {
+    tt.tic();
+    print_highlight("Saving aligned source, all fields, ");
+    print_value("%s ", opt.output.c_str());
+    align::transformBlob(source_blob, res.final());
+    if (!pcl::phaser::saveCloud(opt.output, source_blob, &error))
+      return (print_info("[failed]\n"), fail(kOutput, "Cannot write '%s': %s",
+                                             opt.output.c_str(), error.c_str()));
+    done(static_cast<std::size_t>(source_blob.width) * source_blob.height);
+  }
+  if (!opt.overlay.empty()) {
+    tt.tic();
+    print_highlight("Saving overlay, source red and target green, ");
+    print_value("%s ", opt.overlay.c_str());
+    if (!pcl::phaser::saveCloud(opt.overlay, *res.overlay, &error))
+      return (print_info("[failed]\n"), fail(kOutput, "Cannot write '%s': %s",
+                                             opt.overlay.c_str(), error.c_str()));
+    done(res.overlay->size());
+    print_info("View it with: ");
+    print_value("pcl_viewer %s\n", opt.overlay.c_str());
+  }
+  if (!opt.screenshot.empty()) {
+    tt.tic();
+    print_highlight("Rendering the overlay ");
+    print_value("%s ", opt.screenshot.c_str());
+    if (!pcl::phaser::saveOverlayScreenshot(res.overlay, opt.screenshot, opt.width,
+                                            opt.height, error))
+      return (print_info("[failed]\n"), fail(kOutput, "Cannot save '%s': %s",
+                                             opt.screenshot.c_str(), error.c_str()));
+    done(res.overlay->size());
+  }
+  return (kOk);
+}
+
+int run(const Options& opt, Result& res)
+{
+  pcl::PCLPointCloud2 source, target;
+  Eigen::Matrix4d truth = Eigen::Matrix4d::Identity();
+  bool has_truth = false;
+  std::string error;
+  if (opt.demo) {
+    TicToc tt;
+    tt.tic();
+    print_highlight("Demo: ");
+    print_info("simulating a LiDAR pair, seed %d ", opt.seed);
+    try {
+      const pcl::phaser::ScanPair pair =
+          pcl::phaser::makeDemoPair(static_cast<unsigned>(opt.seed));
+      pcl::toPCLPointCloud2(pair.source, source);
+      pcl::toPCLPointCloud2(pair.target, target);
+      truth = pair.T_target_source;
+    } catch (const std::exception& e) {
+      print_info("[failed]\n");
+      return (fail(kInput, "The demo simulation failed: %s", e.what()));
+    }
+    has_truth = true;
+    print_info("[done, ");
+    print_value("%g", tt.toc());
+    print_info(" ms : %u + %u points; truth: %.1f deg, %.2f m]\n", source.width,
+               target.width,
+               Eigen::AngleAxisd(truth.topLeftCorner<3, 3>()).angle() * 180.0 / kPi,
+               truth.topRightCorner<3, 1>().norm());
+  } else {
+    if (!opt.gt.empty() && !pcl::phaser::loadTransform(opt.gt, truth, &error))
+      return (fail(kInput, "Cannot use --gt: %s", error.c_str()));
+    has_truth = !opt.gt.empty();
+    if (!loadCloud(opt.source, source) || !loadCloud(opt.target, target))
+      return (kInput);
+  }
+  const bool intensity = pcl::getFieldIndex(source, "intensity") >= 0 &&
+                         pcl::getFieldIndex(target, "intensity") >= 0;
+  if (const int rc = intensity ? compute<pcl::PointXYZI>(source, target, opt, res)
+                               : compute<pcl::PointXYZ>(source, target, opt, res))
+    return (rc);
+  if (has_truth) {
+    align::computeErrors(res.global, truth);
+    if (res.icp.ran)
+      align::computeErrors(res.icp, truth);
+  }
+  printReport(res);
+  if (!res.global.converged || (res.icp.ran && !res.icp.converged))
+    return (fail(kNotConverged, "%s did not converge; nothing was written.",
+                 res.global.converged ? "ICP" : "PHASER"));
+  if (const int rc = saveOutputs(opt, source, res))
+    return (rc);
+  if (opt.demo) {
+    const bool global_ok =
+        res.global.rre_deg <= demo_rre_deg && res.global.rte_m <= demo_rte_m;
+    const bool icp_ok =
+        res.icp.rre_deg <= demo_icp_rre_deg && res.icp.rte_m <= demo_icp_rte_m;
+    if (!global_ok || !icp_ok)
+      return (
+          fail(kDemoMissed,
+               "Demo FAILED: %s is %.3g deg / %.3g m from the truth; the bound is %g "
+               "deg / %g m.",
+               global_ok ? "ICP" : "PHASER",
+               global_ok ? res.icp.rre_deg : res.global.rre_deg,
+               global_ok ? res.icp.rte_m : res.global.rte_m,
+               global_ok ? demo_icp_rre_deg : demo_rre_deg,
+               global_ok ? demo_icp_rte_m : demo_rte_m));
+    print_highlight("Demo passed: ");
+    print_info(
+        "PHASER within %g deg / %g m and ICP within %g deg / %g m of the truth.\n",
+        demo_rre_deg, demo_rte_m, demo_icp_rre_deg, demo_icp_rte_m);
+  }
+  return (kOk);
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  if (find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
+    printHelp(argc, argv);
+    return (kOk);
+  }
+  // --json: stdout carries the JSON object only. Everything else, ours, PCL's and
+  // VTK's, goes to stderr: file descriptor 1 points there until the end.
+  const bool json_mode = find_switch(argc, argv, "--json");
+  const int json_fd = json_mode ? dup(STDOUT_FILENO) : -1;
+  if (json_fd >= 0) {
+    dup2(STDERR_FILENO, STDOUT_FILENO);
+    std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ); // keep the order of the messages
+  }
+  print_info("PHASER global registration of two point clouds. For more information, "
+             "use: %s -h\n",
+             argv[0]);
+  TicToc tt;
+  tt.tic();
+  Options opt;
+  Result res;
+  int code = parseOptions(argc, argv, opt);
+  if (code == kOk)
+    code = run(opt, res);
+  const double total_ms = tt.toc();
+  if (code == kOk || res.global.ran) {
+    print_info("Total time: ");
+    print_value("%g", total_ms);
+    print_info(" ms\n");
+  }
+  if (json_fd >= 0) {
+    std::fflush(stdout);
+    dup2(json_fd, STDOUT_FILENO);
+    close(json_fd);
+    std::printf("%s\n", toJson(res, opt, code, total_ms).c_str());
+  }
+  return (code);
+}
