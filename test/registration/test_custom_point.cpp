@@ -71,6 +71,8 @@ TEST(PhaserRegistrationCustomPoint, OusterStylePointAligns)
       p.z = -1.5f + 2 * b;
     }
     p.intensity = 100.0f * a;
+    p.reflectivity = static_cast<std::uint16_t>(40000 * b); // raw uint16 scale
+    p.ambient = static_cast<std::uint16_t>(300 + 100 * a);
     p.range = static_cast<std::uint32_t>(1000.0f * std::sqrt(p.x * p.x + p.y * p.y));
     target->push_back(p);
   }
@@ -81,6 +83,15 @@ TEST(PhaserRegistrationCustomPoint, OusterStylePointAligns)
   pcl::transformPointCloud(*target, *source, Eigen::Matrix4f(T.inverse()));
 
   pcl::PhaserRegistration<PointT, PointT> phaser;
+  // The traits see all four channels of the driver type (range from xyz, never
+  // `range`).
+  EXPECT_EQ(phaser.getFusedChannels(),
+            static_cast<std::uint32_t>(
+                pcl::phaser::CHANNEL_RANGE | pcl::phaser::CHANNEL_INTENSITY |
+                pcl::phaser::CHANNEL_REFLECTIVITY | pcl::phaser::CHANNEL_AMBIENT));
+  phaser.setUseAmbient(false);
+  EXPECT_FALSE(phaser.getFusedChannels() & pcl::phaser::CHANNEL_AMBIENT);
+  phaser.setUseAmbient(true);
   phaser.setInputSource(source);
   phaser.setInputTarget(target);
   pcl::PointCloud<PointT> out;

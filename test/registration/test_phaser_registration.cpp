@@ -327,6 +327,27 @@ TEST(PhaserRegistration, PclKdTreeCachingSchemes)
   }
 }
 
+TEST(PhaserRegistration, ChannelsFollowThePointType)
+{
+  using namespace pcl::phaser;
+  using XYZ = pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ>;
+  using XYZI = pcl::PhaserRegistration<pcl::PointXYZI, pcl::PointXYZI>;
+  using RGB = pcl::PhaserRegistration<pcl::PointXYZRGB, pcl::PointXYZRGB>;
+  using Normal = pcl::PhaserRegistration<pcl::PointNormal, pcl::PointNormal>;
+  EXPECT_EQ(XYZ().getFusedChannels(), static_cast<std::uint32_t>(CHANNEL_RANGE));
+  EXPECT_EQ(XYZI().getFusedChannels(),
+            static_cast<std::uint32_t>(CHANNEL_RANGE | CHANNEL_INTENSITY));
+  EXPECT_EQ(RGB().getFusedChannels(),
+            static_cast<std::uint32_t>(CHANNEL_RANGE | CHANNEL_COLOR));
+  // PointNormal's curvature is not intensity (PCL's IntensityFieldAccessor would say
+  // so).
+  EXPECT_EQ(Normal().getFusedChannels(), static_cast<std::uint32_t>(CHANNEL_RANGE));
+  pcl::PhaserRegistration<pcl::PointXYZI, pcl::PointXYZI> off;
+  off.setUseIntensity(false);
+  EXPECT_EQ(off.getFusedChannels(), static_cast<std::uint32_t>(CHANNEL_RANGE));
+  EXPECT_FALSE(off.getUseIntensity());
+}
+
 TEST(PhaserRegistration, AllPointTypesInstantiated)
 {
   auto run = [](auto tag) {
