@@ -356,8 +356,6 @@ PhaserEstimate estimateTransform(const TargetModel& target,
   // identity (it is within the grid spacing by now), and the matching shift. The spread
   // of the last grid around its peak and of the last 3-D correlation around its peak
   // describe the uncertainty.
-  const Eigen::Matrix3d R_grid_pass = R;
-  const Eigen::Matrix3d R_grid_peak = rotationFromEuler(gridEuler(peak, p.bandwidth));
   const SphericalSpectrum H_final =
       sourceSpectrum((R * points).colwise() + t, channels, p, e);
   const Eigen::Matrix3d dR =
@@ -368,8 +366,6 @@ PhaserEstimate estimateTransform(const TargetModel& target,
       target.fine, (R * points).colwise() + t, channels, p, e, &last_shift, true);
   t += shift.shift;
   e.translation_covariance = translationGaussian(last_shift, shift.index, 2).covariance;
-  (void)R_grid_pass;
-  (void)R_grid_peak;
   rotationSamples(C, peak, R, e);
   e.rotation_score =
       value / (target.spherical_norm * std::sqrt(spectrumSquaredNorm(H_final)));
