@@ -27,8 +27,11 @@ namespace pcl {
  * correlation of the voxelised target and rotated source, with a sub-voxel peak. No
  * normals, features or correspondences are needed, so it replaces
  * pcl::SampleConsensusInitialAlignment as the global initialiser ahead of
- * pcl::IterativeClosestPoint: \code pcl::PhaserRegistration<pcl::PointXYZ,
- * pcl::PointXYZ> phaser; phaser.setInputSource(source); phaser.setInputTarget(target);
+ * pcl::IterativeClosestPoint:
+ *  \code
+ *  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+ *  phaser.setInputSource(source);
+ *  phaser.setInputTarget(target);
  *  pcl::PointCloud<pcl::PointXYZ> aligned;
  *  phaser.align(aligned);
  *  if (phaser.hasConverged()) {
@@ -50,8 +53,10 @@ namespace pcl {
  *
  *  Reference: L. Bernreiter, L. Ott, J. Nieto, R. Siegwart, C. Cadena, "PHASER: a
  * Robust and Correspondence-free Global Pointcloud Registration", IEEE Robotics and
- * Automation Letters 6(2), 2021. \author the pcl_phaser developers \ingroup
- * registration
+ * Automation Letters 6(2), 2021.
+ *
+ *  \author the pcl_phaser developers
+ *  \ingroup registration
  */
 template <typename PointSource, typename PointTarget, typename Scalar = float>
 class PhaserRegistration : public Registration<PointSource, PointTarget, Scalar> {
@@ -142,7 +147,9 @@ public:
    *  with each cloud projected about its own centre; every further pass projects the
    *  source, moved by the current estimate, about the target's centre, so the range
    *  function no longer suffers the parallax of the source's viewpoint, and measures
-   * the residual shift on a fine grid over the target's inner region. Default 2.
+   * the residual shift on a fine grid over the target's inner region. This is a
+   *  maximum: the passes stop once a shift update is below a quarter of a fine voxel.
+   *  Default 3.
    *  \param[in] passes number of passes */
   void setNumberOfPasses(int passes)
   {
@@ -281,10 +288,11 @@ public:
   const pcl_phaser::PhaserEstimate& getEstimate() const { return estimate_; }
 
   /** \brief Mean squared distance from the transformed source to its nearest target
-   *  point, over pairs whose squared distance is <= \a max_range; std::numeric_limits<
-   *  double>::max() when there is none. Unlike the base class in PCL 1.13 this skips
-   *  non-finite source points (Debian's PCL aborts on NaN queries). Note that the base
-   *  version is not virtual: a call through a pcl::Registration pointer runs PCL's.
+   *  point, over pairs whose squared distance is <= \a max_range;
+   *  `std::numeric_limits<double>::max()` when there is none. Unlike the base class in
+   *  PCL 1.13 this skips non-finite source points (Debian's PCL aborts on NaN queries).
+   *  Note that the base version is not virtual: a call through a pcl::Registration
+   *  pointer runs PCL's.
    *  \param[in] max_range maximum squared distance of a pair that counts */
   double getFitnessScore(double max_range = std::numeric_limits<double>::max());
 

@@ -20,6 +20,8 @@ struct ambient;
 } // namespace pcl
 
 namespace pcl {
+/** \brief Helpers of pcl::PhaserRegistration that need PCL: the channels a point type
+ *  carries and cloud file input/output. */
 namespace phaser {
 
 /** \brief The signal channels PhaserRegistration fuses, as bit flags. */
@@ -35,8 +37,8 @@ enum Channel : std::uint32_t {
  *  PCL's traits cannot see, or to hide a field from the registration:
  *  \code
  *  template <> struct pcl::phaser::PointChannels<MyPoint> {
- *    static constexpr bool intensity = false;   // MyPoint::intensity is not a return
- * strength static constexpr bool reflectivity = true, ambient = false, color = false;
+ *    static constexpr bool intensity = false;  // not a return strength in MyPoint
+ *    static constexpr bool reflectivity = true, ambient = false, color = false;
  *  };
  *  \endcode
  *  Range always comes from xyz, never from a `range` field: drivers disagree on its

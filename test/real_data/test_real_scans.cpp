@@ -8,6 +8,7 @@
  *  - real pairs against their reference poses.
  */
 #include "../registration/test_data.h"
+#include "protocol.h"
 
 #include <pcl_phaser/cloud_io.h>
 #include <pcl_phaser/phaser_registration.h>
@@ -41,32 +42,16 @@ Cloud::Ptr load(const std::string& relative)
   return cloud;
 }
 
+using pcl_phaser::bench::randomPose;
+
+/** RRE (deg) and RTE (m) of estimate \a A against truth \a B. */
 double rreDeg(const Eigen::Matrix4d& A, const Eigen::Matrix4d& B)
 {
-  return Eigen::AngleAxisd(Eigen::Matrix3d(A.topLeftCorner<3, 3>().transpose() *
-                                           B.topLeftCorner<3, 3>()))
-             .angle() /
-         kDeg;
+  return pcl_phaser::bench::rreDeg(A, B);
 }
-
 double rte(const Eigen::Matrix4d& A, const Eigen::Matrix4d& B)
 {
-  return (A.topRightCorner<3, 1>() - B.topRightCorner<3, 1>()).norm();
-}
-
-/** Uniform random rotation, translation uniform in the ball of radius \a t_max. */
-Eigen::Matrix4d randomPose(std::mt19937& rng, double t_max)
-{
-  std::normal_distribution<double> n01;
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
-  T.topLeftCorner<3, 3>() = Eigen::Quaterniond(n01(rng), n01(rng), n01(rng), n01(rng))
-                                .normalized()
-                                .toRotationMatrix();
-  const Eigen::Vector3d dir =
-      Eigen::Vector3d(n01(rng), n01(rng), n01(rng)).normalized();
-  T.topRightCorner<3, 1>() = dir * t_max * std::cbrt(u(rng));
-  return T;
+  return pcl_phaser::bench::rteM(A, B);
 }
 
 /** The 20-pose protocol of the end-to-end issue. */

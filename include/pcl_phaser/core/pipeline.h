@@ -12,6 +12,10 @@
 #include <string>
 #include <vector>
 
+/** \brief The registration engine: Eigen and FFTW only, no PCL (spherical sampling and
+ *  harmonic transform, SO(3) correlation and refinement, 3-D spatial correlation,
+ *  channel fusion, Bingham and Gaussian uncertainty). prepareTarget() and
+ *  estimateTransform() are its entry points; pcl::PhaserRegistration wraps them. */
 namespace pcl_phaser {
 
 /** \brief Parameters of one registration, with the defaults PhaserRegistration uses. */

@@ -20,12 +20,16 @@ struct SphericalSamples {
 /** \brief Bins points, given relative to the projection centre, into the 2B x 2B
  *  Driscoll-Healy cells: each observed cell takes the mean of its points' values (the
  *  range |p| when \a values is null). The mean over the observed cells is then
- * subtracted and unobserved cells stay at zero, so the polar caps outside a LiDAR's
- * vertical field of view and the shadows inject no signal (the reference implementation
- * smeared the nearest ring over them). Points at the centre and non-finite points are
- * skipped. \param[in] points 3 x n, relative to the projection centre \param[in]
- * bandwidth B (1..256) \param[in] values optional per-point values (size n) \throws
- * InvalidArgument on an illegal bandwidth or a size mismatch */
+ *  subtracted and unobserved cells stay at zero, so the polar caps outside a LiDAR's
+ *  vertical field of view and the shadows inject no signal (the reference
+ *  implementation smeared the nearest ring over them). Points at the centre and
+ *  non-finite points are skipped.
+ *  \param[in] points 3 x n, relative to the projection centre
+ *  \param[in] bandwidth B (1..256)
+ *  \param[in] values optional per-point values (size n)
+ *  \param[in] num_threads worker threads for the cell lookup; the result does not
+ *  depend on it
+ *  \throws InvalidArgument on an illegal bandwidth or a size mismatch */
 SphericalSamples sampleSphere(const Eigen::Matrix3Xd& points, int bandwidth,
                               const Eigen::VectorXd* values = nullptr,
                               int num_threads = 1);

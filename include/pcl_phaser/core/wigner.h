@@ -25,7 +25,10 @@ struct WignerStart {
   double value(double log_cos_half, double log_sin_half) const;
 };
 
-/** \param[in] log_factorials table of at least 2 max(|m'|,|m|) + 1 entries */
+/** \brief The start of the l-recurrence for the orders (m', m).
+ *  \param[in] mp the order m'
+ *  \param[in] m the order m
+ *  \param[in] log_factorials table of at least 2 max(|m'|,|m|) + 1 entries */
 WignerStart wignerStart(int mp, int m, const std::vector<double>& log_factorials);
 
 /** \brief Coefficients of one step of the Kostelec-Rockmore recurrence in l:

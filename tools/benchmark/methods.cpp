@@ -1,0 +1,55 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ */
+#include "methods.h"
+
+#include <pcl/filters/voxel_grid.h>
+
+namespace pcl_phaser {
+namespace bench {
+
+const std::vector<Method>& allMethods()
+{
+  static const std::vector<Method> methods = {
+      {"phaser", true,
+       [](auto s, auto t, const auto& m) { return runPhaser(s, t, m, true); }},
+      {"phaser_xyz", true,
+       [](auto s, auto t, const auto& m) { return runPhaser(s, t, m, false); }},
+      {"sacia", true, runSacIa},
+      {"prerejective", true, runPrerejective},
+      {"fpcs", true,
+       [](auto s, auto t, const auto& m) { return runFpcs(s, t, m, false); }},
+      {"kfpcs", true,
+       [](auto s, auto t, const auto& m) { return runFpcs(s, t, m, true); }},
+      {"icp", false, runIcp},
+      {"gicp", false, runGicp},
+      {"ndt", false, runNdt},
+  };
+  return methods;
+}
+
+pcl::PointCloud<pcl::PointXYZ>::Ptr downsampleXYZ(const Cloud& cloud, double voxel)
+{
+  auto xyz = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  pcl::copyPointCloud(cloud, *xyz);
+  if (voxel <= 0.0)
+    return xyz;
+  auto out = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  pcl::VoxelGrid<pcl::PointXYZ> grid;
+  grid.setLeafSize(static_cast<float>(voxel), static_cast<float>(voxel),
+                   static_cast<float>(voxel));
+  grid.setInputCloud(xyz);
+  grid.filter(*out);
+  return out;
+}
+
+double elapsedMs(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
+                                                   start)
+      .count();
+}
+
+} // namespace bench
+} // namespace pcl_phaser

@@ -1,0 +1,91 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ *
+ * The aligners pcl_phaser_benchmark compares, behind one signature: pcl_phaser (fused
+ * and range-only), PCL's global aligners (SAC-IA and SampleConsensusPrerejective on
+ * FPFH, FPCS, KFPCS) and its local ones started from identity (ICP, GICP, NDT).
+ */
+#pragma once
+
+#include "protocol.h"
+
+#include <Eigen/Core>
+
+#include <chrono>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace pcl_phaser {
+namespace bench {
+
+/** \brief What a method may be tuned with; scale-dependent radii derive from voxel. */
+struct MethodSettings {
+  double voxel = 0.5;    ///< leaf of the downsampling for PCL's methods (m)
+  bool centroid = false; ///< pcl_phaser: project about the centroids
+  int threads = 2;
+  int bandwidth = 64;    ///< pcl_phaser spherical bandwidth
+  unsigned seed = 1;     ///< std::srand seed of PCL's randomised aligners
+  int fpcs_seconds = 10; ///< time limit of FPCS / KFPCS
+};
+
+/** \brief One registration's outcome (T maps the source into the target frame). */
+struct MethodResult {
+  Eigen::Matrix4d transformation = Eigen::Matrix4d::Identity();
+  bool converged = false;
+  double ms = 0.0;
+  /** the method's own quality figure: pcl_phaser's translation peak score, else
+   * PCL's fitness score (mean squared distance, m^2) */
+  double score = std::numeric_limits<double>::quiet_NaN();
+  bool has_covariance = false;
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
+};
+
+using MethodFunction =
+    std::function<MethodResult(const Cloud::ConstPtr& source,
+                               const Cloud::ConstPtr& target, const MethodSettings&)>;
+
+struct Method {
+  std::string name;
+  bool global = true; ///< false for the local methods started from identity
+  MethodFunction run;
+};
+
+/** \brief All methods, in table order: phaser, phaser_xyz, sacia, prerejective, fpcs,
+ * kfpcs, icp, gicp, ndt. */
+const std::vector<Method>& allMethods();
+
+/** \brief pcl::IterativeClosestPoint from \a initial on clouds downsampled at
+ * settings.voxel; max correspondence distance 2 voxels, 50 iterations. The time of the
+ * refinement is added to result.ms; converged stays as the initial method said. */
+void refineWithIcp(const Cloud::ConstPtr& source, const Cloud::ConstPtr& target,
+                   const MethodSettings& settings, MethodResult& result);
+
+// Per-family entry points (methods_*.cpp).
+MethodResult runPhaser(const Cloud::ConstPtr& source, const Cloud::ConstPtr& target,
+                       const MethodSettings& settings, bool fuse_intensity);
+MethodResult runSacIa(const Cloud::ConstPtr& source, const Cloud::ConstPtr& target,
+                      const MethodSettings& settings);
+MethodResult runPrerejective(const Cloud::ConstPtr& source,
+                             const Cloud::ConstPtr& target,
+                             const MethodSettings& settings);
+MethodResult runFpcs(const Cloud::ConstPtr& source, const Cloud::ConstPtr& target,
+                     const MethodSettings& settings, bool keypoint_variant);
+MethodResult runIcp(const Cloud::ConstPtr& source, const Cloud::ConstPtr& target,
+                    const MethodSettings& settings);
+MethodResult runGicp(const Cloud::ConstPtr& source, const Cloud::ConstPtr& target,
+                     const MethodSettings& settings);
+MethodResult runNdt(const Cloud::ConstPtr& source, const Cloud::ConstPtr& target,
+                    const MethodSettings& settings);
+
+/** \brief xyz of \a cloud downsampled with a voxel grid of leaf \a voxel (no
+ * downsampling when voxel <= 0). */
+pcl::PointCloud<pcl::PointXYZ>::Ptr downsampleXYZ(const Cloud& cloud, double voxel);
+
+/** \brief Milliseconds since \a start. */
+double elapsedMs(std::chrono::steady_clock::time_point start);
+
+} // namespace bench
+} // namespace pcl_phaser
