@@ -2,14 +2,18 @@
 # Set up a Debian 12 machine (as root), build pcl_phaser, and run one job.
 #   tools/run.sh demo   install deps, build, run the main job on its embedded default
 #   tools/run.sh test   install deps, build, run the whole test suite
+#   tools/run.sh benchmark [ARGS]   also installs gnuplot, then runs pcl_phaser_benchmark
+#                       (default: all methods on the shared scans; see doc/benchmarks.md)
 # Idempotent: packages already installed are skipped, the build directory is reused.
 set -euo pipefail
 job=${1:-demo}
+shift || true
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${PCL_PHASER_BUILD_DIR:-$here/build}
 
 packages=(g++ make cmake pkg-config libpcl-dev libeigen3-dev libfftw3-dev libboost-dev
           libgtest-dev xvfb xauth)
+if [[ $job == benchmark ]]; then packages+=(gnuplot-nox); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -32,6 +36,10 @@ case "$job" in
     "$build/tools/pcl_phaser_align" --demo ;;
   test)
     cd "$build" && ctest --output-on-failure -j"$(nproc)" ;;
+  benchmark)
+    # Reads ../shared/data (or -data DIR); plots go to ./benchmark_plots.
+    if (($#)); then "$build/tools/pcl_phaser_benchmark" "$@"
+    else "$build/tools/pcl_phaser_benchmark" -methods all -icp -pairs -plots benchmark_plots; fi ;;
   *)
-    echo "usage: $0 demo|test" >&2; exit 2 ;;
+    echo "usage: $0 demo|test|benchmark [ARGS]" >&2; exit 2 ;;
 esac
