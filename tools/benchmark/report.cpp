@@ -203,11 +203,19 @@ std::vector<std::string> writePlots(const std::string& dir,
   const bool have_gnuplot = std::system("command -v gnuplot > /dev/null 2>&1") == 0;
   for (const std::string sweep : {"noise", "sparsity", "overlap"}) {
     std::map<std::string, std::map<double, std::vector<const Trial*>>> series;
+    bool any = false;
     for (const Trial& t : trials)
-      if (t.sweep == sweep)
+      if (t.sweep == sweep) {
         series[t.method][t.value].push_back(&t);
-    if (series.empty())
+        any = true;
+      }
+    if (!any)
       continue;
+    // The clean trials are the 100 % point of the sparsity and overlap sweeps.
+    if (sweep != "noise")
+      for (const Trial& t : trials)
+        if (t.sweep == "clean" && series.count(t.method))
+          series[t.method][1.0].push_back(&t);
     const std::string base = dir + "/sweep_" + sweep;
     std::ofstream dat(base + ".dat");
     for (const auto& [method, points] : series) {
@@ -215,8 +223,8 @@ std::vector<std::string> writePlots(const std::string& dir,
       for (const auto& [value, group] : points) {
         const Summary s = summarise(group);
         const double x = sweep == "noise" ? value : 100.0 * value;
-        dat << x << " " << 100.0 * s.ok / s.n << " "
-            << (std::isfinite(s.median_rre) ? s.median_rre : -1.0) << "\n";
+        dat << x << " " << 100.0 * s.ok / s.n << " " << format("%g", s.median_rre)
+            << "\n"; // "-" (missing) when nothing succeeded
       }
       dat << "\n\n";
     }
@@ -224,16 +232,18 @@ std::vector<std::string> writePlots(const std::string& dir,
     const char* xlabel = sweep == "noise"      ? "PSNR (dB)"
                          : sweep == "sparsity" ? "points kept (%)"
                                                : "overlap (% of the azimuth circle)";
-    gp << "set terminal pngcairo size 1000,420 font ',11'\nset output '" << base
+    gp << "set terminal pngcairo size 1000,420 font ',11' noenhanced\nset output '"
+       << base
        << ".png'\nset multiplot layout 1,2 title 'pcl_phaser_benchmark: " << sweep
        << " sweep'\nset key bottom left\nset grid\nset xlabel '" << xlabel
-       << "'\nset xrange [*:*] reverse\nset ylabel 'success (%)'\nset yrange [0:105]\n"
+       << "'\nset datafile missing '-'\nset xrange [*:*] reverse\n"
+       << "set ylabel 'success (%)'\nset yrange [0:105]\n"
        << "plot for [i=0:" << series.size() - 1 << "] '" << base
        << ".dat' index i using 1:2 with linespoints title columnheader(1)\n"
        << "set ylabel 'median RRE of successes (deg)'\nset yrange [0:*]\n"
        << "plot for [i=0:" << series.size() - 1 << "] '" << base
-       << ".dat' index i using 1:($3 < 0 ? NaN : $3) with linespoints title "
-          "columnheader(1)\nunset multiplot\n";
+       << ".dat' index i using 1:3 with linespoints title columnheader(1)\n"
+       << "unset multiplot\n";
     gp.close();
     if (have_gnuplot && std::system(("gnuplot '" + base + ".gp'").c_str()) == 0)
       pngs.push_back(base + ".png");
