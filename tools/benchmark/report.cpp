@@ -223,8 +223,10 @@ std::vector<std::string> writePlots(const std::string& dir,
       for (const auto& [value, group] : points) {
         const Summary s = summarise(group);
         const double x = sweep == "noise" ? value : 100.0 * value;
-        dat << x << " " << 100.0 * s.ok / s.n << " " << format("%g", s.median_rre)
-            << "\n"; // "-" (missing) when nothing succeeded
+        // gnuplot skips NaN (its "missing" setting breaks columnheader titles)
+        dat << x << " " << 100.0 * s.ok / s.n << " "
+            << (std::isfinite(s.median_rre) ? format("%g", s.median_rre) : "NaN")
+            << "\n";
       }
       dat << "\n\n";
     }
@@ -236,7 +238,7 @@ std::vector<std::string> writePlots(const std::string& dir,
        << base
        << ".png'\nset multiplot layout 1,2 title 'pcl_phaser_benchmark: " << sweep
        << " sweep'\nset key bottom left\nset grid\nset xlabel '" << xlabel
-       << "'\nset datafile missing '-'\nset xrange [*:*] reverse\n"
+       << "'\nset xrange [*:*] reverse\n"
        << "set ylabel 'success (%)'\nset yrange [0:105]\n"
        << "plot for [i=0:" << series.size() - 1 << "] '" << base
        << ".dat' index i using 1:2 with linespoints title columnheader(1)\n"
