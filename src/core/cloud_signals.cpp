@@ -73,9 +73,9 @@ SpatialSpectrum cloudSpatialSpectrum(const SpatialGrid& grid,
   SpatialVoxelParameters voxel;
   voxel.num_threads = num_threads;
   std::vector<SpatialSpectrum> spectra;
-  spectra.push_back(computeSpectrum(voxelize(grid, points, voxel)));
+  spectra.push_back(computeSpectrum(voxelize(grid, points, voxel), num_threads));
   for (const Eigen::VectorXd& c : channels)
-    spectra.push_back(computeSpectrum(voxelize(grid, points, c, voxel)));
+    spectra.push_back(computeSpectrum(voxelize(grid, points, c, voxel), num_threads));
   if (spectra.size() == 1)
     return std::move(spectra.front());
   FusionParameters fusion;

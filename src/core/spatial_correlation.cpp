@@ -3,7 +3,7 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  */
 #include "fftw_support.h"
-#include "instance_cache.h"
+#include "spatial_fft.h"
 #include "spatial_grid_support.h"
 
 #include <pcl_phaser/core/error.h>
@@ -14,7 +14,6 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <omp.h>
 #include <stdexcept>
 #include <string>
@@ -46,40 +45,6 @@ using detail::resolveThreads;
 
 constexpr int kMinGridSize = 8;
 constexpr int kMaxGridSize = 1024;
-
-// ---------------------------------------------------------------------------------------
-// FFTW plans, one pair per dims. Executed with the new-array interface on our own
-// (fftw_malloc-aligned) arrays, so concurrent correlations can share them.
-struct SpatialFftPlans {
-  detail::FftwPlan forward; // r2c, N reals -> nx * ny * (nz/2+1) complex
-  detail::FftwPlan inverse; // c2r, destroys its input
-};
-
-std::shared_ptr<const SpatialFftPlans> fftPlans(const Eigen::Vector3i& dims)
-{
-  // Touch the planner mutex first: function-local statics die in reverse order of
-  // construction, so the mutex outlives the cache whose plans lock it when destroyed.
-  static std::mutex& planner_mutex = detail::fftwPlannerMutex();
-  static detail::InstanceCache<std::array<int, 3>, SpatialFftPlans> cache;
-  return cache.get({dims.x(), dims.y(), dims.z()}, [&] {
-    const std::size_t n = static_cast<std::size_t>(dims.x()) * dims.y() * dims.z();
-    const std::size_t m =
-        static_cast<std::size_t>(dims.x()) * dims.y() * (dims.z() / 2 + 1);
-    auto real = detail::fftwAllocate<double>(n);
-    auto spectrum = detail::fftwAllocate<fftw_complex>(m);
-    auto plans = std::make_shared<SpatialFftPlans>();
-    std::lock_guard<std::mutex> lock(planner_mutex);
-    // FFTW_ESTIMATE neither reads nor writes the arrays while planning.
-    plans->forward = detail::FftwPlan(fftw_plan_dft_r2c_3d(
-        dims.x(), dims.y(), dims.z(), real.get(), spectrum.get(), detail::kFftwFlags));
-    plans->inverse = detail::FftwPlan(fftw_plan_dft_c2r_3d(
-        dims.x(), dims.y(), dims.z(), spectrum.get(), real.get(), detail::kFftwFlags));
-    if (!plans->forward || !plans->inverse)
-      throw std::runtime_error(
-          "pcl_phaser: FFTW could not plan the 3-D spatial transform");
-    return std::shared_ptr<const SpatialFftPlans>(std::move(plans));
-  });
-}
 
 // ---------------------------------------------------------------------------------------
 /** One point's trilinear footprint: lower corner voxel and the fractions towards the
@@ -287,17 +252,16 @@ SpatialVolume voxelize(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
   return voxelizeImpl(grid, points, &values, parameters);
 }
 
-SpatialSpectrum computeSpectrum(const SpatialVolume& volume)
+SpatialSpectrum computeSpectrum(const SpatialVolume& volume, int num_threads)
 {
+  const int threads = resolveThreads(num_threads);
   checkVolume(volume, "computeSpectrum");
-  const auto plans = fftPlans(volume.grid.dims);
   SpatialSpectrum spectrum;
   spectrum.grid = volume.grid;
   spectrum.coefficients.resize(static_cast<std::size_t>(volume.grid.dims.x()) *
                                volume.grid.dims.y() * spectrum.halfZ());
-  // Out-of-place r2c preserves its input, so casting away const is safe.
-  fftw_execute_dft_r2c(plans->forward.get(), const_cast<double*>(volume.values.data()),
-                       reinterpret_cast<fftw_complex*>(spectrum.coefficients.data()));
+  detail::forwardFft3d(volume.grid.dims, volume.values.data(),
+                       spectrum.coefficients.data(), threads);
   return spectrum;
 }
 
@@ -332,10 +296,8 @@ SpatialVolume correlateSpectra(const SpatialSpectrum& target,
   correlation.grid = target.grid;
   correlation.grid.origin = target.grid.origin - source.grid.origin;
   correlation.values.resize(target.grid.size());
-  const auto plans = fftPlans(target.grid.dims);
-  fftw_execute_dft_c2r(plans->inverse.get(),
-                       reinterpret_cast<fftw_complex*>(product.data()),
-                       correlation.values.data());
+  detail::inverseFft3d(target.grid.dims, product.data(), correlation.values.data(),
+                       threads);
   return correlation;
 }
 

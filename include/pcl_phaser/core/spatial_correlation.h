@@ -249,8 +249,12 @@ struct SpatialSpectrum {
 };
 
 /** \brief r2c 3-D FFT of \a volume (plans cached per dims; thread-safe).
- *  \throws InvalidArgument if values.size() != grid.size() or the grid is invalid. */
-SpatialSpectrum computeSpectrum(const SpatialVolume& volume);
+ *  \param[in] volume the voxel values
+ *  \param[in] num_threads worker threads (0 = OpenMP default); the result is
+ *  bit-identical for any count
+ *  \throws InvalidArgument if values.size() != grid.size(), the grid is invalid or
+ *  num_threads < 0. */
+SpatialSpectrum computeSpectrum(const SpatialVolume& volume, int num_threads = 1);
 
 /** \brief Circular cross-correlation c[tau] = sum_x f[x + tau] g[x] of the \a target f
  *  and the \a source g, computed as c2r(F * conj(G)) / N, so the values equal the sum
