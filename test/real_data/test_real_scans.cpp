@@ -244,8 +244,9 @@ TEST(RealScans, SecondRotationHypothesisRescuesAMirrorPeak)
 {
   // Pose 10 of the KITTI random-pose run (seed 2), range only (PointXYZ): the best
   // SO(3) peak of the first search is a ~168 degree mirror of the truth. With one
-  // hypothesis the registration locks onto it; with three, the geometric overlap picks
-  // the right one.
+  // hypothesis the registration starts from it and fails (the re-projection passes
+  // leave it 12-177 deg off, depending on the steering grid); with three, the geometric
+  // overlap picks the right one.
   const std::string relative = "lidar/kitti_raw_hdl64/0000000000.bin";
   PCL_PHASER_REQUIRE_DATA(relative);
   const CloudXYZ::Ptr scan = loadXYZ(relative);
@@ -275,6 +276,6 @@ TEST(RealScans, SecondRotationHypothesisRescuesAMirrorPeak)
   }
   std::printf("  one hypothesis: RRE %.2f deg; three: RRE %.3f deg\n", error[0],
               error[1]);
-  EXPECT_GT(error[0], 90.0);
+  EXPECT_GT(error[0], 5.0);
   EXPECT_LT(error[1], 2.0);
 }
