@@ -70,7 +70,8 @@ void printHelp(int, char** argv)
       "8..1024 (default: %d)\n"
       "    --passes K          = registration passes, 1..5 (default: %d)\n"
       "    --centre MODE       = projection centre: sensor (each cloud's origin, for "
-      "LiDAR scans) or centroid (default: sensor)\n"
+      "LiDAR scans), centroid, or auto (sensor when both clouds surround their "
+      "origin) (default: sensor)\n"
       "    --threads T         = worker threads, 1..64 (default: %u; the demo: %d)\n",
       d.getBandwidth(), d.getSpatialGridSize(), d.getNumberOfPasses(),
       d.getNumberOfThreads(), default_demo_threads);
@@ -166,7 +167,9 @@ int compute(const pcl::PCLPointCloud2& source_blob,
   if (opt.threads || opt.demo)
     phaser.setNumberOfThreads(opt.threads ? opt.threads : default_demo_threads);
   using Center = typename pcl::PhaserRegistration<PointT, PointT>::ProjectionCenter;
-  phaser.setProjectionCenter(opt.centroid ? Center::Centroid : Center::SensorOrigin);
+  phaser.setProjectionCenter(opt.centre == "centroid" ? Center::Centroid
+                             : opt.centre == "auto"   ? Center::Automatic
+                                                      : Center::SensorOrigin);
   phaser.setInputSource(source);
   phaser.setInputTarget(target);
   print_highlight("Registering ");
@@ -176,7 +179,7 @@ int compute(const pcl::PCLPointCloud2& source_blob,
              pcl::traits::has_intensity_v<PointT> ? "PointXYZI" : "PointXYZ",
              phaser.getBandwidth(), phaser.getSpatialGridSize(),
              phaser.getNumberOfPasses(), phaser.getNumberOfThreads(),
-             opt.centroid ? "centroid" : "sensor");
+             opt.centre.c_str());
   TicToc tt;
   tt.tic();
   Cloud aligned;

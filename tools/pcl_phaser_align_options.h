@@ -60,7 +60,8 @@ const double demo_icp_rre_deg = 0.1, demo_icp_rte_m = 0.02;
 
 struct Options {
   std::string source, target, output, overlay, screenshot, gt;
-  bool demo = false, icp = false, icp_point = false, json = false, centroid = false;
+  std::string centre = "sensor"; // sensor, centroid or auto
+  bool demo = false, icp = false, icp_point = false, json = false;
   int bandwidth = 0, grid = 0, passes = 0, threads = 0; // 0: the class default
   double icp_distance = default_icp_distance;
   int width = default_width, height = default_height, seed = default_seed;
@@ -176,10 +177,10 @@ inline int parseOptions(int argc, char** argv, Options& opt)
     o.value = static_cast<int>(v);
   }
   if (optionValue(argc, argv, *findSpec("--centre"), text)) {
-    if (text != "sensor" && text != "centroid")
-      return (fail(kUsage, "Invalid --centre '%s': expected sensor or centroid.",
+    if (text != "sensor" && text != "centroid" && text != "auto")
+      return (fail(kUsage, "Invalid --centre '%s': expected sensor, centroid or auto.",
                    text.c_str()));
-    opt.centroid = text == "centroid";
+    opt.centre = text;
   }
   if (optionValue(argc, argv, *findSpec("--icp-dist"), text)) {
     char* end = nullptr;

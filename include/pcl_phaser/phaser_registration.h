@@ -6,6 +6,7 @@
 
 #include <pcl_phaser/core/bingham.h>
 #include <pcl_phaser/core/pipeline.h>
+#include <pcl_phaser/core/projection_centre.h>
 #include <pcl_phaser/point_channels.h>
 
 #include <pcl/registration/registration.h>
@@ -88,7 +89,11 @@ public:
   enum class ProjectionCenter {
     SensorOrigin, ///< the origin of each cloud's frame (LiDAR scans in their sensor
                   ///< frame)
-    Centroid ///< each cloud's centroid (object scans, clouds far from their origin)
+    Centroid, ///< each cloud's centroid (object scans, clouds far from their origin)
+    Automatic ///< SensorOrigin when both clouds look like spinning-LiDAR scans in their
+              ///< sensor frame (pcl_phaser::looksSensorCentred: they surround their
+              ///< origin in a band with empty poles), else Centroid; see
+              ///< getUsedProjectionCenter()
   };
 
   PhaserRegistration() { reg_name_ = "PhaserRegistration"; }
@@ -218,6 +223,10 @@ public:
   /** \brief Get the centre of the spherical projection. */
   ProjectionCenter getProjectionCenter() const { return center_; }
 
+  /** \brief The centre the last align() used: getProjectionCenter(), or with Automatic
+   *  what it chose (SensorOrigin or Centroid). */
+  ProjectionCenter getUsedProjectionCenter() const { return used_center_; }
+
   /** \brief Set the smallest translation peak score (peak-to-sidelobe ratio of the
    *  Laplacian of the final 3-D correlation) for which hasConverged() is true. Default
    *  20: on the shared scans correct registrations scored 24-112 and registrations of
@@ -302,7 +311,16 @@ protected:
   void computeTransformation(PointCloudSource& output, const Matrix4& guess) override;
 
 private:
-  void invalidateTarget() { target_model_.reset(); }
+  void invalidateTarget()
+  {
+    target_model_.reset();
+    target_sensor_centred_ = -1;
+  }
+
+  /** \brief The finite target points and their channels; false (with \a problem) when
+   *  there are none or they are too far out. */
+  bool extractTarget(Eigen::Matrix3Xd& points, pcl_phaser::ChannelValues& channels,
+                     std::string& problem) const;
 
   void setChannel(phaser::Channel channel, bool use)
   {
@@ -324,6 +342,9 @@ private:
   std::uint32_t channel_mask_ = ~0u;
   double min_peak_score_ = 20.0;
   std::shared_ptr<const pcl_phaser::TargetModel> target_model_;
+  ProjectionCenter model_center_ = ProjectionCenter::SensorOrigin; ///< of target_model_
+  ProjectionCenter used_center_ = ProjectionCenter::SensorOrigin;
+  double target_sensor_centred_ = -1; ///< viewCoverage of the target; < 0: not computed
   Eigen::Vector3d target_center_ = Eigen::Vector3d::Zero();
   pcl_phaser::PhaserEstimate estimate_;
   std::vector<Candidate, Eigen::aligned_allocator<Candidate>> candidates_;

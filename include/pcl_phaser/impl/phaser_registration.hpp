@@ -25,6 +25,10 @@ using namespace pcl::phaser;
 /** \brief Beyond this, float32 coordinates are quantised to more than 6 cm. */
 constexpr float kMaxCoordinate = 1e6f;
 
+constexpr const char* kTooFar = "coordinates beyond 1e6 m: float32 resolution is worse "
+                                "than 6 cm there; shift the clouds first (e.g. "
+                                "pcl::demeanPointCloud)";
+
 /** \brief Appends the value of channel \a C of \a p to \a values[k] when the mask has
  * it. */
 template <Channel C, typename PointT>
@@ -111,6 +115,22 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::setInputTarget(
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar>
+bool PhaserRegistration<PointSource, PointTarget, Scalar>::extractTarget(
+    Eigen::Matrix3Xd& points, pcl_phaser::ChannelValues& channels,
+    std::string& problem) const
+{
+  bool too_far = false;
+  points = phaser_detail::extractCloud(*target_, static_cast<const Indices*>(nullptr),
+                                       Eigen::Matrix4d::Identity(), fusedChannels(),
+                                       channels, too_far);
+  if (points.cols() == 0)
+    problem = "the target cloud has no finite points";
+  else if (too_far)
+    problem = phaser_detail::kTooFar;
+  return problem.empty();
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
 void PhaserRegistration<PointSource, PointTarget, Scalar>::fail(
     PointCloudSource& output, const Matrix4& guess, const std::string& reason)
 {
@@ -139,32 +159,25 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
   if (!G.allFinite())
     return fail(output, guess, "the initial guess is not finite");
 
-  static const char* const kTooFar = "coordinates beyond 1e6 m: float32 resolution is "
-                                     "worse than 6 cm there; shift the "
-                                     "clouds first (e.g. pcl::demeanPointCloud)";
   double target_ms = 0.0;
-  pcl_phaser::ChannelValues target_channels;
   Eigen::Vector3d source_center = Eigen::Vector3d::Zero();
   try {
-    // Target: prepared once per target and parameter set, relative to its centre.
-    if (!target_model_) {
-      bool too_far = false;
-      Eigen::Matrix3Xd tgt = phaser_detail::extractCloud(
-          *target_, static_cast<const Indices*>(nullptr), Eigen::Matrix4d::Identity(),
-          fusedChannels(), target_channels, too_far);
-      if (tgt.cols() == 0)
-        return fail(output, guess, "the target cloud has no finite points");
-      if (too_far)
-        return fail(output, guess, kTooFar);
-      target_center_ = center_ == ProjectionCenter::Centroid
-                           ? Eigen::Vector3d(tgt.rowwise().mean())
-                           : Eigen::Vector3d::Zero();
-      tgt.colwise() -= target_center_;
-      target_model_ = pcl_phaser::prepareTarget(tgt, params_, target_channels);
-      target_ms = pcl_phaser::preparationTime(*target_model_);
+    // Target: extracted when a model (or, for Automatic, its coverage) is missing.
+    Eigen::Matrix3Xd tgt;
+    pcl_phaser::ChannelValues target_channels;
+    bool have_target = false;
+    std::string reason;
+    if (!target_model_ ||
+        (center_ == ProjectionCenter::Automatic && target_sensor_centred_ < 0)) {
+      if (!extractTarget(tgt, target_channels, reason))
+        return fail(output, guess, reason);
+      have_target = true;
+      if (center_ == ProjectionCenter::Automatic)
+        target_sensor_centred_ =
+            pcl_phaser::looksSensorCentred(tgt, Eigen::Vector3d::Zero()) ? 1 : 0;
     }
-    // Source: the points of indices_, finite, moved by the guess, relative to its
-    // centre (its sensor origin moves with the guess too).
+    // Source: the points of indices_, finite, moved by the guess (its sensor origin
+    // moves with the guess too).
     bool too_far = false;
     pcl_phaser::ChannelValues source_channels;
     Eigen::Matrix3Xd src = phaser_detail::extractCloud(
@@ -172,8 +185,27 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
     if (src.cols() == 0)
       return fail(output, guess, "the source cloud has no finite points");
     if (too_far)
-      return fail(output, guess, kTooFar);
-    source_center = center_ == ProjectionCenter::Centroid
+      return fail(output, guess, phaser_detail::kTooFar);
+    used_center_ = center_;
+    if (center_ == ProjectionCenter::Automatic)
+      used_center_ = target_sensor_centred_ == 1 && pcl_phaser::looksSensorCentred(
+                                                        src, G.topRightCorner<3, 1>())
+                         ? ProjectionCenter::SensorOrigin
+                         : ProjectionCenter::Centroid;
+    // The target model: prepared once per target, parameter set and centre, relative
+    // to the target's centre.
+    if (!target_model_ || model_center_ != used_center_) {
+      if (!have_target && !extractTarget(tgt, target_channels, reason))
+        return fail(output, guess, reason);
+      target_center_ = used_center_ == ProjectionCenter::Centroid
+                           ? Eigen::Vector3d(tgt.rowwise().mean())
+                           : Eigen::Vector3d::Zero();
+      tgt.colwise() -= target_center_;
+      target_model_ = pcl_phaser::prepareTarget(tgt, params_, target_channels);
+      model_center_ = used_center_;
+      target_ms = pcl_phaser::preparationTime(*target_model_);
+    }
+    source_center = used_center_ == ProjectionCenter::Centroid
                         ? Eigen::Vector3d(src.rowwise().mean())
                         : Eigen::Vector3d(G.topRightCorner<3, 1>());
     src.colwise() -= source_center;
