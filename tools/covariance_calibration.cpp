@@ -10,10 +10,15 @@
  *
  *   pcl_phaser_covariance_calibration [-seeds N] [-bandwidths 32,64,128] > sim.csv
  */
+#include "protocol.h"
 #include "scan_simulator.h"
 
+#include <pcl_phaser/cloud_io.h>
 #include <pcl_phaser/core/peak_neighbourhood.h>
 #include <pcl_phaser/phaser_registration.h>
+
+#include <pcl/common/transforms.h>
+#include <pcl/filters/filter.h>
 
 #include <Eigen/Geometry>
 
@@ -52,8 +57,7 @@ Eigen::Vector3d centroid(const pcl::PointCloud<pcl::PointXYZI>& cloud, double ce
       sum += Eigen::Vector3d(std::get<0>(key) + 0.5, std::get<1>(key) + 0.5,
                              std::get<2>(key) + 0.5) *
              cell;
-    }
-    else
+    } else
       sum += q;
   }
   return sum / static_cast<double>(cell > 0.0 ? seen.size() : cloud.size());
@@ -65,9 +69,12 @@ int main(int argc, char** argv)
 {
   int seeds = 30;
   std::vector<int> bandwidths{32, 64, 128};
+  std::string scan_path;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "-seeds"))
       seeds = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "-scan"))
+      scan_path = argv[i + 1];
     else if (!std::strcmp(argv[i], "-bandwidths")) {
       bandwidths.clear();
       std::stringstream list(argv[i + 1]);
@@ -82,9 +89,31 @@ int main(int argc, char** argv)
   std::printf("seed,bandwidth,converged,score,ex,ey,ez,tx,ty,tz,"
               "r00,r01,r02,r11,r12,r22,t00,t01,t02,t11,t12,t22,"
               "px,py,pz,v1x,v1y,v1z,v4x,v4y,v4z\n");
+  pcl::PointCloud<pcl::PointXYZI>::Ptr scan;
+  if (!scan_path.empty()) {
+    scan = pcl::make_shared<pcl::PointCloud<pcl::PointXYZI>>();
+    std::string error;
+    if (!pcl::phaser::loadCloud(scan_path, *scan, &error)) {
+      std::fprintf(stderr, "%s\n", error.c_str());
+      return 2;
+    }
+    pcl::Indices kept;
+    pcl::removeNaNFromPointCloud(*scan, *scan, kept);
+  }
+  std::mt19937 rng(1);
   for (int seed = 1; seed <= seeds; ++seed) {
-    const pcl::phaser::ScanPair pair =
-        pcl::phaser::makeDemoPair(static_cast<unsigned>(seed));
+    pcl::phaser::ScanPair pair;
+    if (scan) { // the scan seen again from a random pose, PSNR 50 dB
+      const Eigen::Matrix4d T = pcl_phaser::bench::randomPose(rng, 2.0);
+      pcl::PointCloud<pcl::PointXYZI> perturbed = *scan;
+      pcl_phaser::bench::Condition noise;
+      pcl_phaser::bench::parseCondition("noise:50", noise);
+      pcl_phaser::bench::applyCondition(noise, perturbed, rng);
+      pcl::transformPointCloud(perturbed, pair.source, Eigen::Matrix4d(T.inverse()));
+      pair.target = *scan;
+      pair.T_target_source = T;
+    } else
+      pair = pcl::phaser::makeDemoPair(static_cast<unsigned>(seed));
     auto source = pcl::make_shared<pcl::PointCloud<pcl::PointXYZI>>(pair.source);
     auto target = pcl::make_shared<pcl::PointCloud<pcl::PointXYZI>>(pair.target);
     for (int b : bandwidths) {

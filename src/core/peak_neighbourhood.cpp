@@ -266,6 +266,33 @@ Eigen::Matrix3d subVoxelPeakCovariance(const SpatialVolume& correlation,
   return cov;
 }
 
+Eigen::Matrix3d interpolationModelCovariance(const SpatialVolume& correlation,
+                                             const Eigen::Vector3i& peak)
+{
+  const double voxel2 = correlation.grid.voxel_size * correlation.grid.voxel_size;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (int a = 0; a < 3; ++a) {
+    if (correlation.grid.dims[a] < 3)
+      continue;
+    Eigen::Vector3i m = peak, q = peak;
+    --m[a];
+    ++q[a];
+    const double va = volumeAt(correlation, m), vb = volumeAt(correlation, peak),
+                 vd = volumeAt(correlation, q);
+    const double k = va - 2.0 * vb + vd;
+    if (!(vb > 0.0 && va > kLogFloor * vb && vd > kLogFloor * vb) || !(k < 0.0))
+      continue; // one model only (or none): no disagreement to measure
+    const double la = std::log(va), lb = std::log(vb), ld = std::log(vd);
+    const double kl = la - 2.0 * lb + ld;
+    if (!(kl < 0.0))
+      continue;
+    const double gaussian = std::clamp(0.5 * (la - ld) / kl, -0.5, 0.5);
+    const double parabola = std::clamp(0.5 * (va - vd) / k, -0.5, 0.5);
+    cov(a, a) = (gaussian - parabola) * (gaussian - parabola) * voxel2;
+  }
+  return cov;
+}
+
 Eigen::Matrix3d translationCovariance(const SpatialVolume& correlation,
                                       const Eigen::Vector3i& peak,
                                       double energy_product)
@@ -279,7 +306,8 @@ Eigen::Matrix3d translationCovariance(const SpatialVolume& correlation,
   const double mismatch = std::clamp(1.0 - c * c / energy_product, 1e-6, 1.0);
   noise.first_difference_variance *= mismatch;
   noise.second_difference_variance *= mismatch;
-  Eigen::Matrix3d cov = subVoxelPeakCovariance(correlation, peak, noise);
+  Eigen::Matrix3d cov = subVoxelPeakCovariance(correlation, peak, noise) +
+                        interpolationModelCovariance(correlation, peak);
   // A volume without sidelobe fluctuation (e.g. a lone spike) gives zero noise; the
   // sub-voxel estimate is then exact up to round-off: keep the matrix definite.
   const double floor =

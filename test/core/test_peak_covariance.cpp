@@ -141,10 +141,11 @@ TEST(PeakCovariance, TranslationCovarianceScalesWithTheMismatch)
   const double c = v.values[v.grid.flatIndex(0, 0, 0)];
   const Eigen::Matrix3d full =
       subVoxelPeakCovariance(v, peak, correlationSidelobes(v, peak));
+  const Eigen::Matrix3d model = interpolationModelCovariance(v, peak);
   for (double rho2 : {0.5, 0.9, 0.99}) { // rho^2 = c^2 / (|f|^2 |g|^2)
     const Eigen::Matrix3d cov = translationCovariance(v, peak, c * c / rho2);
     EXPECT_TRUE(symmetricPositiveDefinite(cov));
-    EXPECT_LT((cov - (1.0 - rho2) * full).norm(), 1e-9 * full.norm()) << rho2;
+    EXPECT_LT((cov - (1.0 - rho2) * full - model).norm(), 1e-9 * full.norm()) << rho2;
   }
   // Identical clouds (rho = 1) still give a definite matrix.
   EXPECT_TRUE(symmetricPositiveDefinite(translationCovariance(v, peak, c * c)));
@@ -196,4 +197,37 @@ TEST(PeakCovariance, RotationCovarianceAddsTheModelErrorAndShrinksWithBandwidth)
     previous = cov.trace();
   }
   EXPECT_THROW(rotationModelError(0), InvalidArgument);
+}
+
+TEST(PeakCovariance, InterpolationModelErrorIsTheDisagreementOfTwoVertices)
+{
+  std::mt19937 rng(2);
+  // A symmetric peak: both vertices are 0, no model error.
+  const SpatialVolume centred = gaussianPeak({0, 0, 0}, {1.0, 1.0, 1.0}, 1.0, 0.0, rng);
+  EXPECT_LT(interpolationModelCovariance(centred, Eigen::Vector3i::Zero()).norm(),
+            1e-20);
+  // A sharp Gaussian off the voxel centre: the log vertex is exact, the parabola is
+  // not.
+  const Eigen::Vector3d centre(0.3, -0.2, 0.1);
+  const SpatialVolume sharp = gaussianPeak(centre, {0.7, 0.7, 0.7}, 1.0, 0.0, rng);
+  const Eigen::Matrix3d cov =
+      interpolationModelCovariance(sharp, Eigen::Vector3i::Zero());
+  EXPECT_TRUE(cov.isDiagonal());
+  for (int a = 0; a < 3; ++a) {
+    Eigen::Vector3i m = Eigen::Vector3i::Zero(), p = m;
+    m[a] = kN - 1;
+    p[a] = 1;
+    const double va = sharp.values[sharp.grid.flatIndex(m.x(), m.y(), m.z())];
+    const double vb = sharp.values[0];
+    const double vd = sharp.values[sharp.grid.flatIndex(p.x(), p.y(), p.z())];
+    const double parabola = 0.5 * (va - vd) / (va - 2 * vb + vd);
+    const double diff = (centre[a] - parabola) * sharp.grid.voxel_size;
+    EXPECT_NEAR(cov(a, a), diff * diff, 1e-9 * diff * diff + 1e-15) << "axis " << a;
+    EXPECT_GT(cov(a, a), 0.0);
+  }
+  // It is part of translationCovariance.
+  const double c = sharp.values[0];
+  const Eigen::Matrix3d noise_free =
+      translationCovariance(sharp, Eigen::Vector3i::Zero(), 2 * c * c);
+  EXPECT_GE((noise_free - cov).diagonal().minCoeff(), -1e-15);
 }

@@ -97,6 +97,17 @@ Eigen::Matrix3d subVoxelPeakCovariance(const SpatialVolume& correlation,
                                        const Eigen::Vector3i& peak,
                                        const CorrelationSidelobes& noise);
 
+/** \brief Model error (m^2) of the sub-voxel interpolation: per axis the squared
+ *  difference between the Gaussian (log-parabola) vertex that findSpatialPeak uses and
+ *  the plain parabola vertex through the same three values. Both are exact for their
+ *  own peak shape; how far they disagree shows how far the real peak is from either,
+ *  i.e. the size of the interpolation bias that noise propagation does not see. Zero
+ *  on axes where only one of them applies. Diagonal.
+ *  \param[in] correlation a volume from correlateSpectra
+ *  \param[in] peak its integer argmax */
+Eigen::Matrix3d interpolationModelCovariance(const SpatialVolume& correlation,
+                                             const Eigen::Vector3i& peak);
+
 /** \brief Covariance (m^2) of the translation found at the peak of \a correlation =
  *  f * g. The target f at the estimate is modelled as a scaled source plus a mismatch
  *  m, f = alpha g + m; least squares gives 1 - rho^2 = |m|^2 / |f|^2 with rho =
