@@ -77,22 +77,23 @@ constexpr int kSidelobeOuterRadius = 16;
 CorrelationSidelobes correlationSidelobes(const SpatialVolume& correlation,
                                           const Eigen::Vector3i& peak);
 
-/** \brief Covariance (m^2) of the sub-voxel peak of findSpatialPeak (kGaussian: the
- *  vertex o of the parabola through the logs of the peak and its two neighbours on each
- *  axis, the raw values where a log is not usable) when the correlation values carry
- *  noise whose first and second differences have the variances in \a noise. First-order
- *  error propagation: with fitted values (a, b, d) and curvature k = a - 2b + d < 0, o
- * = (a - d) / (2k), and do = alpha da + gamma dd + beta db with alpha = (1 - 2o) /
- * (2k), gamma = -(1 + 2o) / (2k) (times 1/a, 1/d in the log domain). Taking beta =
- * -(alpha + gamma), so that o depends on differences only, do = (alpha - gamma)/2 u +
- * (alpha + gamma)/2 s with u = da - dd and s = da - 2 db + dd, which are uncorrelated
- * for stationary noise: var(o) = (alpha - gamma)^2 var(u) / 4 + (alpha + gamma)^2
- * var(s) /
- *  4. Axes are independent. An axis without a maximum (k >= 0) gets the variance of a
- *  uniform error over one voxel, 1/12 voxel^2.
- *  \param[in] correlation a volume from correlateSpectra
- *  \param[in] peak its integer argmax
- *  \param[in] noise variances of the differences of the noise on the values */
+/** \brief Covariance (m^2) of the sub-voxel peak of findSpatialPeak (kGaussian: on each
+ * axis the vertex o of the parabola through the logs of the peak and its two
+ * neighbours, or through the raw values where a log is not usable) when the values
+ * carry noise whose first and second differences have the variances in \a noise.
+ *
+ * First-order error propagation. With fitted values (a, b, d) and curvature
+ * k = a - 2b + d < 0, the vertex is o = (a - d) / (2k) and
+ * do = alpha da + beta db + gamma dd, alpha = (1 - 2o) / (2k), gamma = -(1 + 2o) / (2k)
+ * (times 1/a and 1/d in the log domain). Taking beta = -(alpha + gamma), so that o
+ * depends on differences only, do = (alpha - gamma) u / 2 + (alpha + gamma) s / 2 with
+ * u = da - dd and s = da - 2 db + dd, uncorrelated for stationary noise:
+ * var(o) = (alpha - gamma)^2 var(u) / 4 + (alpha + gamma)^2 var(s) / 4.
+ * Axes are independent. An axis without a maximum (k >= 0) gets the variance of a
+ * uniform error over one voxel, 1/12 voxel^2.
+ * \param[in] correlation a volume from correlateSpectra
+ * \param[in] peak its integer argmax
+ * \param[in] noise variances of the differences of the noise on the values */
 Eigen::Matrix3d subVoxelPeakCovariance(const SpatialVolume& correlation,
                                        const Eigen::Vector3i& peak,
                                        const CorrelationSidelobes& noise);
@@ -113,8 +114,10 @@ Eigen::Matrix3d interpolationModelCovariance(const SpatialVolume& correlation,
  *  m, f = alpha g + m; least squares gives 1 - rho^2 = |m|^2 / |f|^2 with rho =
  *  c_peak / (|f| |g|). The mismatch perturbs the correlation by m * g, which fluctuates
  *  like the correlation of unrelated signals, i.e. like the sidelobes of c, scaled by
- *  the mismatch fraction 1 - rho^2. That noise is propagated through the sub-voxel
- *  estimate (subVoxelPeakCovariance). The result is symmetric positive definite.
+ *  the mismatch fraction 1 - rho^2 (kept >= 1e-6). That noise is propagated through the
+ *  sub-voxel estimate (subVoxelPeakCovariance), and the interpolation model error
+ *  (interpolationModelCovariance) is added. No fitted constant. The result is symmetric
+ *  positive definite (diagonal, every variance >= 1e-12 voxel^2).
  *  \param[in] correlation a volume from correlateSpectra
  *  \param[in] peak its integer argmax
  *  \param[in] energy_product |f|^2 |g|^2 of the two correlated volumes (see
