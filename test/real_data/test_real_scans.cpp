@@ -5,7 +5,8 @@
  * Real scans from ../shared/data (skipped with a message when absent):
  *  - a scan seen again from 20 random poses (uniform rotation, translation up to 2 m),
  *    recovered by the global stage alone, then by ICP started from it;
- *  - real pairs against their reference poses.
+ *  - real pairs against their reference poses;
+ *  - the consistency of getCovariance() on KITTI at PSNR 50 dB.
  */
 #include "../registration/test_data.h"
 #include "protocol.h"
