@@ -271,8 +271,11 @@ public:
     return candidates_;
   }
 
-  /** \brief Covariance of the translation in metres^2 (target frame), from the spread
-   *  of the final 3-D correlation peak (paper eq. 15). */
+  /** \brief Covariance of the translation in metres^2 (target frame): the error of
+   *  the sub-voxel peak of the final 3-D correlation under the noise its sidelobes
+   * show, scaled by how much the two clouds differ (pcl_phaser::translationCovariance).
+   * It is not the width of the peak (paper eq. 15), which is far wider than the error.
+   */
   Eigen::Matrix3d getTranslationCovariance() const
   {
     return estimate_.translation_covariance;
@@ -287,10 +290,12 @@ public:
 
   /** \brief 6x6 covariance of the pose error, ordered (rotation vector [rad],
    * translation [m]) for omega = Log(R_true R_est^T) and nu = t_true - t_est, so its
-   * inverse can serve as the information matrix of a pose-graph edge. The translation
-   * block adds to the Gaussian of the 3-D correlation peak the effect of the rotation
-   * error on the translation through the lever arm of the source centre. Zero before a
-   * successful align(). */
+   * inverse can serve as the information matrix of a pose-graph edge. The rotation
+   * block is the Bingham's tangent covariance plus a model error (0.11 pi / B)^2 per
+   * axis (pcl_phaser::rotationCovariance); the translation block adds to
+   * getTranslationCovariance() the effect of the rotation error on the translation
+   * through the lever arm of the source centre. Symmetric positive definite when
+   * hasConverged(); zero otherwise. Calibration: doc/benchmarks.md section 5. */
   Eigen::Matrix<double, 6, 6> getCovariance() const;
 
   /** \brief Everything the last align() measured: scores and the time of each stage. */

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
 
 namespace pcl_phaser {
@@ -153,6 +154,189 @@ TranslationGaussian translationGaussian(const SpatialVolume& correlation,
     out.covariance += (values[i] - lowest) / total * d * d.transpose();
   }
   return out;
+}
+
+namespace {
+
+/** The correlation at integer lag \a p (wrapped). */
+double volumeAt(const SpatialVolume& c, const Eigen::Vector3i& p)
+{
+  const Eigen::Vector3i& n = c.grid.dims;
+  return c.values[c.grid.flatIndex(wrap(p.x(), n.x()), wrap(p.y(), n.y()),
+                                   wrap(p.z(), n.z()))];
+}
+
+/** Running mean and variance (Welford), deterministic for a fixed order. */
+struct RunningVariance {
+  double mean = 0.0, m2 = 0.0;
+  std::size_t count = 0;
+  void add(double v)
+  {
+    ++count;
+    const double d = v - mean;
+    mean += d / static_cast<double>(count);
+    m2 += d * (v - mean);
+  }
+  double variance() const { return count > 1 ? m2 / static_cast<double>(count) : 0.0; }
+};
+
+/** Neighbours below this fraction of the peak make findSpatialPeak fit the raw values
+ *  (its kLogFloor). */
+constexpr double kLogFloor = 1e-6;
+
+} // namespace
+
+CorrelationSidelobes correlationSidelobes(const SpatialVolume& correlation,
+                                          const Eigen::Vector3i& peak)
+{
+  const Eigen::Vector3i& n = correlation.grid.dims;
+  // The shell, clipped to the volume: a lag is visited once even if the box wraps.
+  Eigen::Vector3i lo, hi;
+  for (int a = 0; a < 3; ++a) {
+    const int reach = std::min(kSidelobeOuterRadius, (n[a] - 1) / 2);
+    lo[a] = -reach;
+    hi[a] = reach;
+  }
+  RunningVariance first[3], second[3];
+  for (int dx = lo.x(); dx <= hi.x(); ++dx)
+    for (int dy = lo.y(); dy <= hi.y(); ++dy)
+      for (int dz = lo.z(); dz <= hi.z(); ++dz) {
+        if (std::abs(dx) <= kSidelobeInnerRadius &&
+            std::abs(dy) <= kSidelobeInnerRadius &&
+            std::abs(dz) <= kSidelobeInnerRadius)
+          continue;
+        const Eigen::Vector3i p = peak + Eigen::Vector3i(dx, dy, dz);
+        const double centre = volumeAt(correlation, p);
+        for (int a = 0; a < 3; ++a) {
+          if (n[a] < 3)
+            continue;
+          Eigen::Vector3i m = p, q = p;
+          --m[a];
+          ++q[a];
+          const double vm = volumeAt(correlation, m), vq = volumeAt(correlation, q);
+          first[a].add(vq - vm);
+          second[a].add(vm - 2.0 * centre + vq);
+        }
+      }
+  CorrelationSidelobes out;
+  for (int a = 0; a < 3; ++a) {
+    out.first_difference_variance[a] = first[a].variance();
+    out.second_difference_variance[a] = second[a].variance();
+  }
+  return out;
+}
+
+Eigen::Matrix3d subVoxelPeakCovariance(const SpatialVolume& correlation,
+                                       const Eigen::Vector3i& peak,
+                                       const CorrelationSidelobes& noise)
+{
+  const double voxel2 = correlation.grid.voxel_size * correlation.grid.voxel_size;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (int a = 0; a < 3; ++a) {
+    double var = 1.0 / 12.0; // no usable maximum on this axis: one voxel, uniform
+    if (correlation.grid.dims[a] >= 3) {
+      Eigen::Vector3i m = peak, q = peak;
+      --m[a];
+      ++q[a];
+      const double va = volumeAt(correlation, m), vb = volumeAt(correlation, peak),
+                   vd = volumeAt(correlation, q);
+      // Fitted values and the factors that turn value errors into fitted-value errors.
+      double fa = va, fb = vb, fd = vd, sa = 1.0, sd = 1.0;
+      if (vb > 0.0 && va > kLogFloor * vb && vd > kLogFloor * vb) {
+        fa = std::log(va);
+        fb = std::log(vb);
+        fd = std::log(vd);
+        sa = 1.0 / va;
+        sd = 1.0 / vd;
+      }
+      const double k = fa - 2.0 * fb + fd;
+      if (k < 0.0) {
+        // o = (fa - fd) / (2k): do/dfa = (1 - 2o) / (2k), do/dfd = -(1 + 2o) / (2k).
+        const double o = std::clamp(0.5 * (fa - fd) / k, -0.5, 0.5);
+        const double alpha = sa * (1.0 - 2.0 * o) / (2.0 * k);
+        const double gamma = -sd * (1.0 + 2.0 * o) / (2.0 * k);
+        var = 0.25 * (alpha - gamma) * (alpha - gamma) *
+                  noise.first_difference_variance[a] +
+              0.25 * (alpha + gamma) * (alpha + gamma) *
+                  noise.second_difference_variance[a];
+      }
+    }
+    cov(a, a) = var * voxel2;
+  }
+  return cov;
+}
+
+Eigen::Matrix3d interpolationModelCovariance(const SpatialVolume& correlation,
+                                             const Eigen::Vector3i& peak)
+{
+  const double voxel2 = correlation.grid.voxel_size * correlation.grid.voxel_size;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (int a = 0; a < 3; ++a) {
+    if (correlation.grid.dims[a] < 3)
+      continue;
+    Eigen::Vector3i m = peak, q = peak;
+    --m[a];
+    ++q[a];
+    const double va = volumeAt(correlation, m), vb = volumeAt(correlation, peak),
+                 vd = volumeAt(correlation, q);
+    const double k = va - 2.0 * vb + vd;
+    if (!(vb > 0.0 && va > kLogFloor * vb && vd > kLogFloor * vb) || !(k < 0.0))
+      continue; // one model only (or none): no disagreement to measure
+    const double la = std::log(va), lb = std::log(vb), ld = std::log(vd);
+    const double kl = la - 2.0 * lb + ld;
+    if (!(kl < 0.0))
+      continue;
+    const double gaussian = std::clamp(0.5 * (la - ld) / kl, -0.5, 0.5);
+    const double parabola = std::clamp(0.5 * (va - vd) / k, -0.5, 0.5);
+    cov(a, a) = (gaussian - parabola) * (gaussian - parabola) * voxel2;
+  }
+  return cov;
+}
+
+Eigen::Matrix3d translationCovariance(const SpatialVolume& correlation,
+                                      const Eigen::Vector3i& peak,
+                                      double energy_product)
+{
+  if (!(energy_product > 0.0) || !std::isfinite(energy_product))
+    throw InvalidArgument("translationCovariance: the energy product must be > 0");
+  CorrelationSidelobes noise = correlationSidelobes(correlation, peak);
+  const double c = volumeAt(correlation, peak);
+  // Mismatch fraction 1 - rho^2, kept >= 1e-6: identical clouds still differ by the
+  // resampling of the voxel grid, and a zero would make the covariance singular.
+  const double mismatch = std::clamp(1.0 - c * c / energy_product, 1e-6, 1.0);
+  noise.first_difference_variance *= mismatch;
+  noise.second_difference_variance *= mismatch;
+  Eigen::Matrix3d cov = subVoxelPeakCovariance(correlation, peak, noise) +
+                        interpolationModelCovariance(correlation, peak);
+  // A volume without sidelobe fluctuation (e.g. a lone spike) gives zero noise; the
+  // sub-voxel estimate is then exact up to round-off: keep the matrix definite.
+  const double floor =
+      1e-12 * correlation.grid.voxel_size * correlation.grid.voxel_size;
+  for (int a = 0; a < 3; ++a)
+    cov(a, a) = std::max(cov(a, a), floor);
+  return cov;
+}
+
+double spectrumEnergy(const SpatialSpectrum& spectrum)
+{
+  double sum = 0.0;
+  for (std::size_t i = 0; i < spectrum.coefficients.size(); ++i)
+    sum += spectrum.multiplicity(i) * std::norm(spectrum.coefficients[i]);
+  return sum / static_cast<double>(spectrum.grid.size());
+}
+
+double rotationModelError(int bandwidth)
+{
+  if (bandwidth < 1)
+    throw InvalidArgument("rotationModelError: bandwidth must be >= 1");
+  return kRotationModelErrorScale * M_PI / bandwidth;
+}
+
+Eigen::Matrix3d rotationCovariance(const BinghamDistribution& peak, int bandwidth)
+{
+  const double s = rotationModelError(bandwidth);
+  const Eigen::Matrix3d spread = peak.tangentCovariance(TangentFrame::kGlobal);
+  return 0.5 * (spread + spread.transpose()) + s * s * Eigen::Matrix3d::Identity();
 }
 
 } // namespace pcl_phaser

@@ -122,12 +122,11 @@ Eigen::Matrix3d refine(const TargetModel& target, const SphericalSpectrum& H,
 /** Translation: the (already rotated) source voxelised into the grid of \a target, 3-D
  *  correlation, sub-voxel peak; the correlation volume is kept when \a volume is given.
  */
-SpatialCorrelationResult estimateShift(const SpatialSpectrum& target,
-                                       const Eigen::Matrix3Xd& points,
-                                       const ChannelValues& channels,
-                                       const PhaserParameters& p, PhaserEstimate& e,
-                                       SpatialVolume* volume = nullptr,
-                                       bool with_score = false)
+SpatialCorrelationResult
+estimateShift(const SpatialSpectrum& target, const Eigen::Matrix3Xd& points,
+              const ChannelValues& channels, const PhaserParameters& p,
+              PhaserEstimate& e, SpatialVolume* volume = nullptr,
+              bool with_score = false, double* energy_product = nullptr)
 {
   const auto t = Clock::now();
   const SpatialSpectrum S = cloudSpatialSpectrum(target.grid, points, channels,
@@ -140,6 +139,8 @@ SpatialCorrelationResult estimateShift(const SpatialSpectrum& target,
   e.translation_ms += msSince(t);
   if (volume)
     *volume = std::move(C);
+  if (energy_product) // |f|^2 |g|^2, for the mismatch of the translation covariance
+    *energy_product = spectrumEnergy(target) * spectrumEnergy(S);
   return shift;
 }
 
@@ -332,11 +333,11 @@ PhaserEstimate estimateTransform(const TargetModel& target,
   SpatialVolume last_shift;
   if (single) {
     R = refine(target, H, R, p, value, e);
-    const SpatialCorrelationResult shift =
-        estimateShift(target.coarse, R * points, channels, p, e, &last_shift, true);
+    double energy = 0.0;
+    const SpatialCorrelationResult shift = estimateShift(
+        target.coarse, R * points, channels, p, e, &last_shift, true, &energy);
     t = shift.shift;
-    e.translation_covariance =
-        translationGaussian(last_shift, shift.index, 2).covariance;
+    e.translation_covariance = translationCovariance(last_shift, shift.index, energy);
     rotationSamples(C, peak, R, e);
     e.rotation = R;
     e.translation = t;
@@ -373,10 +374,12 @@ PhaserEstimate estimateTransform(const TargetModel& target,
       refine(target, H_final, Eigen::Matrix3d::Identity(), p, value, e);
   R = dR * R;
   t = dR * t;
-  const SpatialCorrelationResult shift = estimateShift(
-      target.fine, (R * points).colwise() + t, channels, p, e, &last_shift, true);
+  double energy = 0.0;
+  const SpatialCorrelationResult shift =
+      estimateShift(target.fine, (R * points).colwise() + t, channels, p, e,
+                    &last_shift, true, &energy);
   t += shift.shift;
-  e.translation_covariance = translationGaussian(last_shift, shift.index, 2).covariance;
+  e.translation_covariance = translationCovariance(last_shift, shift.index, energy);
   rotationSamples(C, peak, R, e);
   e.rotation_score =
       value / (target.spherical_norm * std::sqrt(spectrumSquaredNorm(H_final)));

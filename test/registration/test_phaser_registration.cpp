@@ -6,12 +6,14 @@
  * recovered, guess, indices, normals, caching, threads, swapped inputs, PCL's kd-tree
  * caching loop, and every bad input of the issue.
  */
+#include <pcl_phaser/core/peak_neighbourhood.h>
 #include <pcl_phaser/phaser_registration.h>
 
 #include <pcl/common/transforms.h>
 #include <pcl/point_types.h>
 #include <pcl/search/kdtree.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
@@ -239,6 +241,48 @@ TEST(PhaserRegistration, NormalsAreRotatedAndInputUntouched)
   EXPECT_LT(worst, 0.03); // 1 degree ~ 0.017
   for (std::size_t i = 0; i < source->size(); ++i)
     ASSERT_EQ(0, std::memcmp(&(*source)[i], &source_copy[i], sizeof(pcl::PointNormal)));
+}
+
+TEST(PhaserRegistration, CovarianceIsPositiveDefiniteAndShrinksWithBandwidth)
+{
+  // getCovariance() when converged: symmetric positive definite, rotation block at
+  // least the model error of the bandwidth, translation block of the size of the
+  // error (not of the correlation block), and smaller at a larger bandwidth (paper
+  // Fig. 9). Zero when the registration failed.
+  const auto target = makeScene<pcl::PointXYZ>(5);
+  const Eigen::Matrix4f T = makePose({1, -1, 2}, 1.9, {0.8, -0.6, 0.2});
+  double previous_rotation = std::numeric_limits<double>::infinity();
+  for (int B : {32, 64}) {
+    pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+    phaser.setBandwidth(B);
+    phaser.setInputSource(seenFrom(*target, T));
+    phaser.setInputTarget(target);
+    CloudXYZ out;
+    phaser.align(out);
+    ASSERT_TRUE(phaser.hasConverged()) << "B " << B;
+    const Eigen::Matrix<double, 6, 6> cov = phaser.getCovariance();
+    ASSERT_TRUE(cov.allFinite());
+    EXPECT_LT((cov - cov.transpose()).norm(), 1e-12 * cov.norm());
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(cov);
+    EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0) << "B " << B;
+    const double floor = pcl_phaser::rotationModelError(B);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> rot(cov.topLeftCorner<3, 3>());
+    EXPECT_GE(rot.eigenvalues().minCoeff(), floor * floor * (1 - 1e-9));
+    const double sigma_t = std::sqrt(cov.bottomRightCorner<3, 3>().trace());
+    EXPECT_GT(sigma_t, 1e-4);
+    EXPECT_LT(sigma_t, 0.2); // the voxel is ~0.4 m; the old eq. 15 block gave ~0.5 m
+    const double rotation_trace = cov.topLeftCorner<3, 3>().trace();
+    EXPECT_LT(rotation_trace, previous_rotation);
+    previous_rotation = rotation_trace;
+  }
+  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> unrelated;
+  unrelated.setInputSource(makeScene<pcl::PointXYZ>(6, 300));
+  unrelated.setInputTarget(target);
+  unrelated.setMinimumPeakScore(1e9); // nothing converges
+  CloudXYZ out;
+  unrelated.align(out);
+  ASSERT_FALSE(unrelated.hasConverged());
+  EXPECT_TRUE(unrelated.getCovariance().isZero());
 }
 
 TEST(PhaserRegistration, CachedTargetGivesIdenticalResults)

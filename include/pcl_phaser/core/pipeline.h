@@ -63,7 +63,9 @@ struct PhaserEstimate {
    * lowest). */
   std::vector<Eigen::Vector4d> rotation_samples;
   std::vector<double> rotation_weights;
-  /** \brief Weighted covariance of the last 3-D correlation peak (m^2, eq. 15). */
+  /** \brief Covariance of the translation (m^2): the error of the sub-voxel peak of
+   *  the last 3-D correlation under the noise its sidelobes and mismatch imply (see
+   *  translationCovariance in peak_neighbourhood.h). */
   Eigen::Matrix3d translation_covariance = Eigen::Matrix3d::Zero();
 };
 

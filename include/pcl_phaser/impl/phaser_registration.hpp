@@ -5,6 +5,7 @@
 #pragma once
 
 #include <pcl_phaser/core/error.h>
+#include <pcl_phaser/core/peak_neighbourhood.h>
 #include <pcl_phaser/phaser_registration.h>
 #include <pcl_phaser/point_channels.h>
 
@@ -275,7 +276,8 @@ PhaserRegistration<PointSource, PointTarget, Scalar>::getCovariance() const
   Eigen::Matrix<double, 6, 6> cov = Eigen::Matrix<double, 6, 6>::Zero();
   if (!converged_)
     return cov;
-  const Eigen::Matrix3d rot = getRotationUncertainty().tangentCovariance();
+  const Eigen::Matrix3d rot =
+      pcl_phaser::rotationCovariance(getRotationUncertainty(), params_.bandwidth);
   // t_est = c_t + delta - R c_s, R_true = Exp(omega) R_est: nu = d_delta + [R c_s]x
   // omega.
   Eigen::Matrix3d lever;

@@ -1,0 +1,148 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ *
+ * pcl_phaser_covariance_calibration: registers simulated LiDAR pairs (makeDemoPair,
+ * exact truth) and prints, per pair and bandwidth, the pose error and the ingredients
+ * of getCovariance() as CSV. The rotation model-error scale (kRotationModelErrorScale
+ * in peak_neighbourhood.h) was fitted on this output, so that the real scans of
+ * pcl_phaser_benchmark -study nees stay held out.
+ *
+ *   pcl_phaser_covariance_calibration [-seeds N] [-bandwidths 32,64,128] > sim.csv
+ */
+#include "protocol.h"
+#include "scan_simulator.h"
+
+#include <pcl_phaser/cloud_io.h>
+#include <pcl_phaser/core/peak_neighbourhood.h>
+#include <pcl_phaser/phaser_registration.h>
+
+#include <pcl/common/transforms.h>
+#include <pcl/filters/filter.h>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <set>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace {
+
+void printMatrix(const Eigen::Matrix3d& m)
+{
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j)
+      std::printf(",%.6e", m(i, j));
+}
+
+/** Centroid of the points, or of the occupied cells of size \a cell when > 0. */
+Eigen::Vector3d centroid(const pcl::PointCloud<pcl::PointXYZI>& cloud, double cell)
+{
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  std::set<std::tuple<long, long, long>> seen;
+  for (const auto& p : cloud) {
+    const Eigen::Vector3d q(p.x, p.y, p.z);
+    if (cell > 0.0) {
+      const auto key = std::make_tuple(static_cast<long>(std::floor(q.x() / cell)),
+                                       static_cast<long>(std::floor(q.y() / cell)),
+                                       static_cast<long>(std::floor(q.z() / cell)));
+      if (!seen.insert(key).second)
+        continue;
+      sum += Eigen::Vector3d(std::get<0>(key) + 0.5, std::get<1>(key) + 0.5,
+                             std::get<2>(key) + 0.5) *
+             cell;
+    } else
+      sum += q;
+  }
+  return sum / static_cast<double>(cell > 0.0 ? seen.size() : cloud.size());
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  int seeds = 30;
+  std::vector<int> bandwidths{32, 64, 128};
+  std::string scan_path;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (!std::strcmp(argv[i], "-seeds"))
+      seeds = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "-scan"))
+      scan_path = argv[i + 1];
+    else if (!std::strcmp(argv[i], "-bandwidths")) {
+      bandwidths.clear();
+      std::stringstream list(argv[i + 1]);
+      std::string item;
+      while (std::getline(list, item, ','))
+        bandwidths.push_back(std::atoi(item.c_str()));
+    } else {
+      std::fprintf(stderr, "usage: %s [-seeds N] [-bandwidths 32,64,128]\n", argv[0]);
+      return 1;
+    }
+  }
+  std::printf("seed,bandwidth,converged,score,ex,ey,ez,tx,ty,tz,"
+              "r00,r01,r02,r11,r12,r22,t00,t01,t02,t11,t12,t22,"
+              "px,py,pz,v1x,v1y,v1z,v4x,v4y,v4z\n");
+  pcl::PointCloud<pcl::PointXYZI>::Ptr scan;
+  if (!scan_path.empty()) {
+    scan = pcl::make_shared<pcl::PointCloud<pcl::PointXYZI>>();
+    std::string error;
+    if (!pcl::phaser::loadCloud(scan_path, *scan, &error)) {
+      std::fprintf(stderr, "%s\n", error.c_str());
+      return 2;
+    }
+    pcl::Indices kept;
+    pcl::removeNaNFromPointCloud(*scan, *scan, kept);
+  }
+  std::mt19937 rng(1);
+  for (int seed = 1; seed <= seeds; ++seed) {
+    pcl::phaser::ScanPair pair;
+    if (scan) { // the scan seen again from a random pose, PSNR 50 dB
+      const Eigen::Matrix4d T = pcl_phaser::bench::randomPose(rng, 2.0);
+      pcl::PointCloud<pcl::PointXYZI> perturbed = *scan;
+      pcl_phaser::bench::Condition noise;
+      pcl_phaser::bench::parseCondition("noise:50", noise);
+      pcl_phaser::bench::applyCondition(noise, perturbed, rng);
+      pcl::transformPointCloud(perturbed, pair.source, Eigen::Matrix4d(T.inverse()));
+      pair.target = *scan;
+      pair.T_target_source = T;
+    } else
+      pair = pcl::phaser::makeDemoPair(static_cast<unsigned>(seed));
+    auto source = pcl::make_shared<pcl::PointCloud<pcl::PointXYZI>>(pair.source);
+    auto target = pcl::make_shared<pcl::PointCloud<pcl::PointXYZI>>(pair.target);
+    for (int b : bandwidths) {
+      pcl::PhaserRegistration<pcl::PointXYZI, pcl::PointXYZI> phaser;
+      phaser.setBandwidth(b);
+      phaser.setInputSource(source);
+      phaser.setInputTarget(target);
+      pcl::PointCloud<pcl::PointXYZI> aligned;
+      phaser.align(aligned);
+      const Eigen::Matrix4d T = phaser.getFinalTransformation().cast<double>();
+      const Eigen::Matrix4d& truth = pair.T_target_source;
+      const Eigen::AngleAxisd omega(Eigen::Matrix3d(
+          truth.topLeftCorner<3, 3>() * T.topLeftCorner<3, 3>().transpose()));
+      const Eigen::Vector3d e = omega.angle() * omega.axis();
+      const Eigen::Vector3d nu =
+          truth.topRightCorner<3, 1>() - T.topRightCorner<3, 1>();
+      std::printf("%d,%d,%d,%.3f,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e", seed, b,
+                  phaser.hasConverged() ? 1 : 0, phaser.getTranslationScore(), e.x(),
+                  e.y(), e.z(), nu.x(), nu.y(), nu.z());
+      printMatrix(phaser.getRotationUncertainty().tangentCovariance());
+      printMatrix(phaser.getTranslationCovariance());
+      const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
+      const Eigen::Vector3d pc = R * centroid(*source, 0.0),
+                            v1 = R * centroid(*source, 1.0),
+                            v4 = R * centroid(*source, 4.0);
+      std::printf(",%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n", pc.x(), pc.y(),
+                  pc.z(), v1.x(), v1.y(), v1.z(), v4.x(), v4.y(), v4.z());
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
