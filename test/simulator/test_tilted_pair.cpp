@@ -71,4 +71,30 @@ TEST(TiltedPair, NormalizedRefinementRemovesTheTiltBias)
   }
 }
 
+TEST(TiltedPair, NormalizedRefinementInASinglePass)
+{
+  // One pass refines about the source's own centre, with the supports of pass 1.
+  const pcl::phaser::ScanPair pair = pcl::phaser::makeDemoPair(1);
+  const Engine source = toEngine(pair.source), target = toEngine(pair.target);
+  pcl_phaser::PhaserParameters p;
+  p.num_threads = 2;
+  p.passes = 1;
+  p.normalized_refinement = true;
+  const auto model = pcl_phaser::prepareTarget(target.points, p, target.channels);
+  const pcl_phaser::PhaserEstimate e =
+      pcl_phaser::estimateTransform(*model, source.points, p, source.channels);
+  const Eigen::Matrix3d R_true = pair.T_target_source.topLeftCorner<3, 3>();
+  const double rre =
+      Eigen::AngleAxisd(e.rotation * R_true.transpose()).angle() * kRadToDeg;
+  std::printf("  one pass, normalised: RRE %.3f deg\n", rre);
+  EXPECT_TRUE(e.rotation.allFinite());
+  EXPECT_LT(rre, 10.0); // one pass is parallax-limited (doc/benchmarks.md section 3)
+  // A model prepared without the supports is refused.
+  p.normalized_refinement = false;
+  const auto plain = pcl_phaser::prepareTarget(target.points, p, target.channels);
+  p.normalized_refinement = true;
+  EXPECT_ANY_THROW(
+      pcl_phaser::estimateTransform(*plain, source.points, p, source.channels));
+}
+
 } // namespace
