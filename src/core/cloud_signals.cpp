@@ -41,7 +41,7 @@ SphericalSpectrum cloudSphericalSpectrum(const Eigen::Matrix3Xd& points,
                                          const ChannelValues& channels, int bandwidth,
                                          int levels, int num_threads,
                                          int& observed_cells, double& sampling_ms,
-                                         double& sht_ms)
+                                         double& sht_ms, SphericalSupport* support)
 {
   auto t = Clock::now();
   const std::vector<int> cells = sphereCells(points, bandwidth, num_threads);
@@ -61,6 +61,21 @@ SphericalSpectrum cloudSphericalSpectrum(const Eigen::Matrix3Xd& points,
   fusion.num_threads = num_threads;
   SphericalSpectrum fused =
       spectra.size() == 1 ? std::move(spectra.front()) : fuseSpherical(spectra, fusion);
+  if (support) {
+    // Observed cells are those of the range samples (every point has a finite range).
+    std::vector<double> mask(samples.front().values.size(), 0.0);
+    for (const int cell : cells)
+      if (cell >= 0)
+        mask[cell] = 1.0;
+    // The energy of the signal that is correlated: the range samples themselves, or
+    // the fused function (band-limited, so read back on the observed cells only).
+    std::vector<double> energy =
+        spectra.size() == 1 ? samples.front().values : sht->inverse(fused);
+    for (std::size_t c = 0; c < energy.size(); ++c)
+      energy[c] = mask[c] * energy[c] * energy[c];
+    support->mask = sht->forward(mask.data(), num_threads);
+    support->energy = sht->forward(energy.data(), num_threads);
+  }
   sht_ms += msSince(t);
   return fused;
 }

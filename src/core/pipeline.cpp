@@ -45,12 +45,13 @@ SpatialGridParameters gridParameters(const PhaserParameters& p)
 SphericalSpectrum sphericalSpectrum(const Eigen::Matrix3Xd& points,
                                     const ChannelValues& channels,
                                     const PhaserParameters& p, const char* which,
-                                    double& sampling_ms, double& sht_ms)
+                                    double& sampling_ms, double& sht_ms,
+                                    SphericalSupport* support = nullptr)
 {
   int observed = 0;
   SphericalSpectrum F =
       cloudSphericalSpectrum(points, channels, p.bandwidth, p.fusion_levels,
-                             p.num_threads, observed, sampling_ms, sht_ms);
+                             p.num_threads, observed, sampling_ms, sht_ms, support);
   if (observed < 2)
     throw InvalidArgument(
         std::string(which) +
@@ -68,6 +69,7 @@ public:
   PhaserParameters params;
   std::size_t channels = 0; ///< number of fused channels beyond the geometry
   SphericalSpectrum spherical;
+  SphericalSupport spherical_support; ///< for the normalised refinement
   double spherical_norm = 0.0;
   SpatialSpectrum coarse; ///< whole target, padded: any shift up to half the extent
   /** Occupancy only, when channels are fused: ranks rotation hypotheses by geometric
@@ -86,12 +88,15 @@ public:
 
 namespace {
 
-/** The source's spherical spectrum, timed. */
+/** The source's spherical spectrum, timed; with its support when \a support is given.
+ */
 SphericalSpectrum sourceSpectrum(const Eigen::Matrix3Xd& points,
                                  const ChannelValues& channels,
-                                 const PhaserParameters& p, PhaserEstimate& e)
+                                 const PhaserParameters& p, PhaserEstimate& e,
+                                 SphericalSupport* support = nullptr)
 {
-  return sphericalSpectrum(points, channels, p, "source", e.sampling_ms, e.sht_ms);
+  return sphericalSpectrum(points, channels, p, "source", e.sampling_ms, e.sht_ms,
+                           support);
 }
 
 /** The global search: C on the SO(3) grid. */
@@ -106,14 +111,19 @@ So3CorrelationGrid correlateRotation(const TargetModel& target,
   return C;
 }
 
-/** Newton refinement of \a R, timed; returns the exact C there through \a value. */
+/** Newton refinement of \a R, timed; with PhaserParameters::normalized_refinement on
+ *  the energy-normalised correlation (see refineRotation: plain C leans towards equal
+ *  sensor tilt), whose supports are then given. Returns the exact C there through \a
+ *  value. */
 Eigen::Matrix3d refine(const TargetModel& target, const SphericalSpectrum& H,
-                       const Eigen::Matrix3d& R, const PhaserParameters& p,
-                       double& value, PhaserEstimate& e)
+                       const SphericalSupport& support, const Eigen::Matrix3d& R,
+                       const PhaserParameters& p, double& value, PhaserEstimate& e)
 {
   const auto t = Clock::now();
   const RefinedRotation refined = refineRotation(
-      target.spherical, H, R, p.bandwidth, p.refinement_iterations, p.num_threads);
+      target.spherical, H, R, p.bandwidth, p.refinement_iterations, p.num_threads,
+      p.normalized_refinement ? &target.spherical_support : nullptr,
+      p.normalized_refinement ? &support : nullptr);
   value = refined.value;
   e.refinement_ms += msSince(t);
   return refined.rotation;
@@ -225,8 +235,9 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
   model->params = params;
   model->channels = channels.size();
   double sampling_ms = 0.0, sht_ms = 0.0;
-  model->spherical =
-      sphericalSpectrum(points, channels, params, "target", sampling_ms, sht_ms);
+  model->spherical = sphericalSpectrum(
+      points, channels, params, "target", sampling_ms, sht_ms,
+      params.normalized_refinement ? &model->spherical_support : nullptr);
   model->spherical_norm = std::sqrt(spectrumSquaredNorm(model->spherical));
   SpatialGridParameters coarse_grid;
   coarse_grid.grid_size = params.spatial_grid_size;
@@ -279,7 +290,8 @@ PhaserEstimate estimateTransform(const TargetModel& target,
     throw InvalidArgument(problem);
   if (target.params.bandwidth != p.bandwidth ||
       target.params.spatial_grid_size != p.spatial_grid_size ||
-      target.params.voxel_size != p.voxel_size || target.params.passes != p.passes)
+      target.params.voxel_size != p.voxel_size || target.params.passes != p.passes ||
+      target.params.normalized_refinement != p.normalized_refinement)
     throw InvalidArgument("the target model was prepared with other parameters");
   if (p.passes > 1 && target.fine.coefficients.empty())
     throw InvalidArgument("the target model was prepared for a single pass");
@@ -293,7 +305,12 @@ PhaserEstimate estimateTransform(const TargetModel& target,
   // Pass 1: the global search about the source's own centre. Each of the best distinct
   // grid peaks (symmetric scenes have several) goes through the translation stage; the
   // one whose rotated source overlaps the target most wins.
-  SphericalSpectrum H = sourceSpectrum(points, channels, p, e);
+  // Only the spectrum that is refined needs a support, and only for the normalised
+  // refinement.
+  SphericalSupport support;
+  SphericalSupport* const wants_support = p.normalized_refinement ? &support : nullptr;
+  SphericalSpectrum H =
+      sourceSpectrum(points, channels, p, e, single ? wants_support : nullptr);
   So3CorrelationGrid C = correlateRotation(target, H, p, e);
   std::vector<So3GridIndex> peaks;
   if (p.rotation_candidates > 1)
@@ -332,7 +349,7 @@ PhaserEstimate estimateTransform(const TargetModel& target,
   double value = C(peak);
   SpatialVolume last_shift;
   if (single) {
-    R = refine(target, H, R, p, value, e);
+    R = refine(target, H, support, R, p, value, e);
     double energy = 0.0;
     const SpatialCorrelationResult shift = estimateShift(
         target.coarse, R * points, channels, p, e, &last_shift, true, &energy);
@@ -369,9 +386,9 @@ PhaserEstimate estimateTransform(const TargetModel& target,
   // of the last grid around its peak and of the last 3-D correlation around its peak
   // describe the uncertainty.
   const SphericalSpectrum H_final =
-      sourceSpectrum((R * points).colwise() + t, channels, p, e);
+      sourceSpectrum((R * points).colwise() + t, channels, p, e, wants_support);
   const Eigen::Matrix3d dR =
-      refine(target, H_final, Eigen::Matrix3d::Identity(), p, value, e);
+      refine(target, H_final, support, Eigen::Matrix3d::Identity(), p, value, e);
   R = dR * R;
   t = dR * t;
   double energy = 0.0;

@@ -104,26 +104,32 @@ wignerAccumulate(int L, int B, int J, int mp, int m, const double* __restrict cb
 }
 
 /** The l-recurrence of the exact evaluation for one order pair, for K rotations at once
- *  (their cos beta in \a cb): acc_k = sum_l c_l d^l(beta_k), split into real and
- *  imaginary parts. Dispatched like wignerAccumulate. */
+ *  (their cos beta in \a cb), shared by P coefficient sequences (c holds P rows of B
+ *  complex values): acc_p,k = sum_l c_p,l d^l(beta_k), split into real and imaginary
+ *  parts (P rows of K). Each sequence sees the same operations in the same order as
+ *  if it were alone. Dispatched like wignerAccumulate. */
 [[gnu::target_clones("avx2", "default")]] void
-evaluateAccumulate(int L, int B, int K, int mp, int m, const double* __restrict cb,
-                   const double* __restrict c, double* __restrict d0,
-                   double* __restrict d1, double* __restrict d2,
+evaluateAccumulate(int L, int B, int K, int P, int mp, int m,
+                   const double* __restrict cb, const double* __restrict c,
+                   double* __restrict d0, double* __restrict d1, double* __restrict d2,
                    double* __restrict acc_re, double* __restrict acc_im)
 {
   double* dprev = d0;
   double* dpp = d1;
   double* dnext = d2;
-  for (int k = 0; k < K; ++k) {
-    acc_re[k] = acc_im[k] = 0.0;
+  for (int k = 0; k < K; ++k)
     dpp[k] = 0.0;
-  }
+  for (int i = 0; i < P * K; ++i)
+    acc_re[i] = acc_im[i] = 0.0;
   for (int l = L; l < B; ++l) {
-    const double cr = c[2 * l], ci = c[2 * l + 1];
-    for (int k = 0; k < K; ++k) {
-      acc_re[k] += cr * dprev[k];
-      acc_im[k] += ci * dprev[k];
+    for (int q = 0; q < P; ++q) {
+      const double cr = c[2 * (q * B + l)], ci = c[2 * (q * B + l) + 1];
+      double* __restrict ar = acc_re + q * K;
+      double* __restrict ai = acc_im + q * K;
+      for (int k = 0; k < K; ++k) {
+        ar[k] += cr * dprev[k];
+        ai[k] += ci * dprev[k];
+      }
     }
     if (l + 1 < B) {
       const WignerStep st = wignerStep(l, mp, m);
@@ -304,15 +310,22 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
 }
 
 // ---------------------------------------------------------------------------------------
-std::vector<double> evaluateCorrelation(const SphericalSpectrum& target,
-                                        const SphericalSpectrum& source,
-                                        const std::vector<Eigen::Matrix3d>& rotations,
-                                        int num_threads)
+std::vector<std::vector<double>>
+evaluateCorrelations(const std::vector<SpectrumPair>& pairs,
+                     const std::vector<Eigen::Matrix3d>& rotations, int num_threads)
 {
-  const int B = static_cast<int>(source.rows());
+  if (pairs.empty())
+    return {};
+  for (const SpectrumPair& pair : pairs)
+    if (!pair.target || !pair.source)
+      throw InvalidArgument("evaluateCorrelations: a spectrum pair is incomplete");
+  const int B = static_cast<int>(pairs.front().source->rows());
   checkBandwidth(B);
-  checkSpectrum(target, B, "target");
-  checkSpectrum(source, B, "source");
+  for (const SpectrumPair& pair : pairs) {
+    checkSpectrum(*pair.target, B, "target");
+    checkSpectrum(*pair.source, B, "source");
+  }
+  const int P = static_cast<int>(pairs.size());
   const int K = static_cast<int>(rotations.size());
   std::vector<EulerZYZ> euler(K);
   std::vector<double> cb(K), lc(K), ls(K);
@@ -324,12 +337,13 @@ std::vector<double> evaluateCorrelation(const SphericalSpectrum& target,
   }
   const std::vector<double> lf = logFactorials(2 * B + 1);
   // Per-order partial sums, reduced in a fixed order: identical for any thread count.
-  std::vector<double> partial(static_cast<std::size_t>(B) * K, 0.0);
+  const std::size_t PK = static_cast<std::size_t>(P) * K;
+  std::vector<double> partial(static_cast<std::size_t>(B) * PK, 0.0);
 
 #pragma omp parallel num_threads(std::max(1, num_threads))
   {
-    std::vector<double> d0(K), d1(K), d2(K), acc_re(K), acc_im(K);
-    std::vector<Complex> sum_mp(K), c(B);
+    std::vector<double> d0(K), d1(K), d2(K), acc_re(PK), acc_im(PK);
+    std::vector<Complex> sum_mp(PK), c(static_cast<std::size_t>(P) * B), turn(K);
 #pragma omp for schedule(dynamic, 1)
     for (int m = 0; m < B; ++m) {
       std::fill(sum_mp.begin(), sum_mp.end(), Complex(0.0));
@@ -338,26 +352,42 @@ std::vector<double> evaluateCorrelation(const SphericalSpectrum& target,
         const WignerStart start = wignerStart(mp, m, lf);
         for (int k = 0; k < K; ++k)
           d0[k] = start.value(lc[k], ls[k]);
-        for (int l = L; l < B; ++l)
-          c[l] = std::conj(coefficient(target, l, mp)) * source(l, m);
-        evaluateAccumulate(L, B, K, mp, m, cb.data(),
+        for (int q = 0; q < P; ++q)
+          for (int l = L; l < B; ++l)
+            c[static_cast<std::size_t>(q) * B + l] =
+                std::conj(coefficient(*pairs[q].target, l, mp)) *
+                (*pairs[q].source)(l, m);
+        evaluateAccumulate(L, B, K, P, mp, m, cb.data(),
                            reinterpret_cast<const double*>(c.data()), d0.data(),
                            d1.data(), d2.data(), acc_re.data(), acc_im.data());
         for (int k = 0; k < K; ++k)
-          sum_mp[k] +=
-              std::polar(1.0, -mp * euler[k].alpha) * Complex(acc_re[k], acc_im[k]);
+          turn[k] = std::polar(1.0, -mp * euler[k].alpha);
+        for (std::size_t i = 0; i < PK; ++i)
+          sum_mp[i] += turn[i % K] * Complex(acc_re[i], acc_im[i]);
       }
       const double eps = (m == 0) ? 1.0 : 2.0;
-      for (int k = 0; k < K; ++k)
-        partial[static_cast<std::size_t>(m) * K + k] =
-            eps * (std::polar(1.0, -m * euler[k].gamma) * sum_mp[k]).real();
+      for (std::size_t i = 0; i < PK; ++i)
+        partial[static_cast<std::size_t>(m) * PK + i] =
+            eps * (std::polar(1.0, -m * euler[i % K].gamma) * sum_mp[i]).real();
     }
   }
-  std::vector<double> value(K, 0.0);
+  std::vector<std::vector<double>> value(P, std::vector<double>(K, 0.0));
   for (int m = 0; m < B; ++m)
-    for (int k = 0; k < K; ++k)
-      value[k] += partial[static_cast<std::size_t>(m) * K + k];
+    for (int q = 0; q < P; ++q)
+      for (int k = 0; k < K; ++k)
+        value[q][k] += partial[static_cast<std::size_t>(m) * PK +
+                               static_cast<std::size_t>(q) * K + k];
   return value;
+}
+
+std::vector<double> evaluateCorrelation(const SphericalSpectrum& target,
+                                        const SphericalSpectrum& source,
+                                        const std::vector<Eigen::Matrix3d>& rotations,
+                                        int num_threads)
+{
+  return std::move(
+      evaluateCorrelations({SpectrumPair{&target, &source}}, rotations, num_threads)
+          .front());
 }
 
 } // namespace pcl_phaser

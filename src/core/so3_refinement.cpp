@@ -11,6 +11,8 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 namespace pcl_phaser {
 
@@ -47,25 +49,54 @@ std::array<Eigen::Vector3d, 19> makeStencil()
 RefinedRotation refineRotation(const SphericalSpectrum& target,
                                const SphericalSpectrum& source,
                                const Eigen::Matrix3d& start, int output_bandwidth,
-                               int iterations, int num_threads)
+                               int iterations, int num_threads,
+                               const SphericalSupport* target_support,
+                               const SphericalSupport* source_support)
 {
   checkBandwidth(output_bandwidth, "output bandwidth");
+  if (!target_support != !source_support)
+    throw InvalidArgument("refineRotation: give the supports of both signals or none");
   static const std::array<Eigen::Vector3d, 19> stencil = makeStencil();
   const double max_step = M_PI / (2.0 * output_bandwidth);
   double h = max_step;
 
+  std::vector<SpectrumPair> pairs{{&target, &source}};
+  if (target_support) {
+    pairs.push_back({&target_support->energy, &source_support->mask});
+    pairs.push_back({&target_support->mask, &source_support->energy});
+  }
+  // C and, with supports, the normalised objective at each rotation; a rotation whose
+  // observed regions do not overlap scores -inf.
+  std::vector<double> c_raw;
+  const auto evaluate = [&](const std::vector<Eigen::Matrix3d>& rotations) {
+    std::vector<std::vector<double>> v =
+        evaluateCorrelations(pairs, rotations, num_threads);
+    c_raw = v[0];
+    if (pairs.size() == 1)
+      return v[0];
+    std::vector<double> objective(rotations.size());
+    for (std::size_t i = 0; i < rotations.size(); ++i) {
+      const double energy = v[1][i] * v[2][i];
+      objective[i] = (v[1][i] > 0.0 && v[2][i] > 0.0)
+                         ? v[0][i] / std::sqrt(energy)
+                         : -std::numeric_limits<double>::infinity();
+    }
+    return objective;
+  };
+
   RefinedRotation best;
   best.rotation = start;
-  best.value = -std::numeric_limits<double>::infinity();
+  best.objective = -std::numeric_limits<double>::infinity();
+  best.value = 0.0;
   Eigen::Matrix3d current = start;
   std::vector<Eigen::Matrix3d> rotations(stencil.size());
   for (int it = 0; it < iterations; ++it) {
     for (std::size_t i = 0; i < stencil.size(); ++i)
       rotations[i] = current * expMap(h * stencil[i]);
-    const std::vector<double> c =
-        evaluateCorrelation(target, source, rotations, num_threads);
-    if (c[0] > best.value) {
-      best.value = c[0];
+    const std::vector<double> c = evaluate(rotations);
+    if (c[0] > best.objective) {
+      best.objective = c[0];
+      best.value = c_raw[0];
       best.rotation = current;
     }
     // Central differences; indices follow makeStencil(): 1 + 2i is +e_i, 2 + 2i is
@@ -84,21 +115,23 @@ RefinedRotation refineRotation(const SphericalSpectrum& target,
             (c[block] - c[block + 1] - c[block + 2] + c[block + 3]) / (4.0 * h * h);
       }
     Eigen::Vector3d delta = Eigen::Vector3d::Zero();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(H);
-    if (eig.eigenvalues().maxCoeff() < 0.0)
-      delta = -H.ldlt().solve(g);
-    else if (g.norm() > 0.0)
-      delta = h * g / g.norm();
-    if (delta.norm() > max_step)
-      delta *= max_step / delta.norm();
+    if (g.allFinite() && H.allFinite()) {
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(H);
+      if (eig.eigenvalues().maxCoeff() < 0.0)
+        delta = -H.ldlt().solve(g);
+      else if (g.norm() > 0.0)
+        delta = h * g / g.norm();
+      if (delta.norm() > max_step)
+        delta *= max_step / delta.norm();
+    }
     current = current * expMap(delta);
     h *= 0.5;
     best.iterations = it + 1;
   }
-  const double final_value =
-      evaluateCorrelation(target, source, {current}, num_threads)[0];
-  if (final_value >= best.value) {
-    best.value = final_value;
+  const double final_value = evaluate({current})[0];
+  if (final_value >= best.objective) {
+    best.objective = final_value;
+    best.value = c_raw[0];
     best.rotation = current;
   }
   return best;

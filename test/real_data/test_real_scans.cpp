@@ -171,6 +171,8 @@ TEST(RealPairs, Hdl32AgainstReference)
   phaser.align(out);
   ASSERT_TRUE(phaser.hasConverged());
   const Eigen::Matrix4d G = phaser.getFinalTransformation().cast<double>();
+  std::printf("  global: RRE %.3f deg, RTE %.4f m, score %.1f\n", rreDeg(G, reference),
+              rte(G, reference), phaser.getTranslationScore());
   EXPECT_LT(rreDeg(G, reference), 1.0);
   EXPECT_LT(rte(G, reference), 0.3);
 }
@@ -194,6 +196,8 @@ TEST(RealPairs, OfficeKeypointsAgainstGroundTruth)
   phaser.align(out);
   ASSERT_TRUE(phaser.hasConverged());
   const Eigen::Matrix4d G = phaser.getFinalTransformation().cast<double>();
+  std::printf("  global: RRE %.3f deg, RTE %.4f m, score %.1f\n", rreDeg(G, truth),
+              rte(G, truth), phaser.getTranslationScore());
   EXPECT_LT(rreDeg(G, truth) * kDeg, 0.1745);
   EXPECT_LT(rte(G, truth), 1.0);
 }

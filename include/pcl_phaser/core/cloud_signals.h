@@ -4,6 +4,7 @@
  */
 #pragma once
 
+#include <pcl_phaser/core/so3_refinement.h>
 #include <pcl_phaser/core/spatial_correlation.h>
 #include <pcl_phaser/core/spherical_harmonics.h>
 
@@ -34,12 +35,17 @@ ChannelValues normalizeChannels(const ChannelValues& channels, Eigen::Index n);
  *  \param[in] levels pyramid levels
  *  \param[in] num_threads worker threads
  *  \param[out] observed_cells cells with at least one point
- *  \param[out] sampling_ms, sht_ms time spent binning and transforming */
+ *  \param[out] sampling_ms, sht_ms time spent binning and transforming
+ *  \param[out] support when given, the support of the signal for the normalised
+ *  refinement (refineRotation): the observed cells and the energy of the signal on
+ *  them (the squared de-meaned range, or with channels the squared fused function;
+ *  two or three more transforms) */
 SphericalSpectrum cloudSphericalSpectrum(const Eigen::Matrix3Xd& points,
                                          const ChannelValues& channels, int bandwidth,
                                          int levels, int num_threads,
                                          int& observed_cells, double& sampling_ms,
-                                         double& sht_ms);
+                                         double& sht_ms,
+                                         SphericalSupport* support = nullptr);
 
 /** \brief The fused voxel spectrum of a cloud on \a grid: occupancy (the geometry: mean
  *  range per voxel is not translation invariant) and every channel (mean value times

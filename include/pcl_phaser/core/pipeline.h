@@ -28,6 +28,13 @@ struct PhaserParameters {
   int rotation_candidates = 3; ///< distinct SO(3) peaks tried in pass 1, 1..10
   int passes = 3;      ///< at most; 1: one global pass; 2+: re-project, re-correlate
   int num_threads = 1; ///< worker threads, 1..64
+  /** \brief Newton-refine the rotation on the energy-normalised correlation
+   *  (refineRotation with supports) instead of plain C. It removes the pull of the
+   *  field-of-view edges towards equal sensor tilt (tilted-sensor pairs: 1.2-1.4 deg
+   *  -> 0.3-0.4 deg) for about 10 ms more CPU per align, but the translation score of
+   *  such pairs then falls below the default convergence threshold (doc/benchmarks.md
+   *  section 6), so it is off by default. */
+  bool normalized_refinement = false;
 };
 
 /** \brief Empty when \a p is legal, else the reason (for PCL_ERROR). */

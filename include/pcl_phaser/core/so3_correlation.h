@@ -96,4 +96,21 @@ std::vector<double> evaluateCorrelation(const SphericalSpectrum& target,
                                         const std::vector<Eigen::Matrix3d>& rotations,
                                         int num_threads = 1);
 
+/** \brief A (target, source) spectrum pair for evaluateCorrelations (not owned). */
+struct SpectrumPair {
+  const SphericalSpectrum* target = nullptr;
+  const SphericalSpectrum* source = nullptr;
+};
+
+/** \brief evaluateCorrelation for several spectrum pairs at the same rotations: the
+ *  Wigner recurrence, the most expensive part, is run once and shared, so three pairs
+ *  cost well under three single evaluations. Each pair's values equal those of
+ *  evaluateCorrelation bit for bit. All spectra must have the same bandwidth.
+ *  \return one vector of C values (one per rotation) per pair, in the order given
+ *  \throws InvalidArgument on a null or mis-sized spectrum */
+std::vector<std::vector<double>>
+evaluateCorrelations(const std::vector<SpectrumPair>& pairs,
+                     const std::vector<Eigen::Matrix3d>& rotations,
+                     int num_threads = 1);
+
 } // namespace pcl_phaser

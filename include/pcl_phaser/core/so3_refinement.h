@@ -14,19 +14,46 @@ namespace pcl_phaser {
 struct RefinedRotation {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   double value = 0.0; ///< exact C at \a rotation
+  /** \brief The maximised objective at \a rotation: C itself, or C normalised by the
+   *  observed energy when supports were given (see refineRotation). */
+  double objective = 0.0;
   int iterations = 0;
+};
+
+/** \brief Where a spherical signal f was observed and where its energy lies: the
+ *  spectra (B x B, like the signal's) of the indicator m of the observed cells and of
+ *  f^2 (the squared de-meaned signal, zero where unobserved). */
+struct SphericalSupport {
+  SphericalSpectrum mask;
+  SphericalSpectrum energy;
 };
 
 /** \brief Newton ascent of C on SO(3) in the tangent space with exact evaluation
  *  (19-point stencil, step clamped to the grid spacing, halved each iteration);
- * pole-safe and coordinate-free (doc/so3-correlation-spec.md section 5). \param[in]
- * target, source spectra (B x B) as given to So3Correlator \param[in] start a grid peak
+ *  pole-safe and coordinate-free (doc/so3-correlation-spec.md section 5).
+ *
+ * With the supports of both signals the objective is the energy-normalised
+ * correlation C(R) / sqrt(E_f(R) E_h(R)), where E_f(R) = <f^2, m_h(R^-1 .)> is the
+ * energy of the target over the rotated source's observed region and E_h(R) =
+ * <m_f, h^2(R^-1 .)> that of the source over the target's. Unobserved cells are zero,
+ * so plain C also rewards overlapping the two observed regions where the signals are
+ * strong: two LiDARs tilted against each other have tilted field-of-view bands whose
+ * edges (the near ground, far below the mean range) pull C towards equal tilt by about
+ * 40 % of the relative tilt. The normalisation divides that reward out. The three
+ * correlations share one Wigner recurrence (evaluateCorrelations).
+ *  \param[in] target, source spectra (B x B) as given to So3Correlator
+ *  \param[in] start a grid peak
  *  \param[in] output_bandwidth Bo of the grid the start came from (sets the step)
  *  \param[in] iterations Newton iterations (3 reach < 1e-4 deg on exact data)
- *  \param[in] num_threads worker threads */
+ *  \param[in] num_threads worker threads
+ *  \param[in] target_support, source_support supports of the two signals (both or
+ *  neither); null: plain C
+ *  \throws InvalidArgument when only one support is given */
 RefinedRotation refineRotation(const SphericalSpectrum& target,
                                const SphericalSpectrum& source,
                                const Eigen::Matrix3d& start, int output_bandwidth,
-                               int iterations = 3, int num_threads = 1);
+                               int iterations = 3, int num_threads = 1,
+                               const SphericalSupport* target_support = nullptr,
+                               const SphericalSupport* source_support = nullptr);
 
 } // namespace pcl_phaser
