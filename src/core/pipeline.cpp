@@ -77,12 +77,6 @@ public:
    */
   SpatialSpectrum coarse_geometry, fine_geometry;
   SpatialSpectrum fine; ///< inner region, little padding: the residual of later passes
-  /** Geometry of the inner region at half the fine resolution (1/8 of the voxels): the
-   *  shifts of the re-projection passes only steer the viewpoint of the next pass and
-   *  are small by then. The first residual, which can be several coarse voxels, stays
-   * on the fine grid: on the half grid it once sent KITTI pose 5 (seed 1) to the
-   * mirror. */
-  SpatialSpectrum steer;
   double preparation_ms = 0.0;
 };
 
@@ -265,11 +259,6 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
     if (!channels.empty())
       model->fine_geometry = cloudSpatialSpectrum(fine, inner, {}, params.fusion_levels,
                                                   params.num_threads);
-    SpatialGridParameters steer_grid = fine_grid;
-    steer_grid.grid_size = std::max(8, fine_grid.grid_size / 2);
-    steer_grid.voxel_size = 2.0 * fine_grid.voxel_size;
-    model->steer = cloudSpatialSpectrum(makeSpatialGrid(inner, steer_grid), inner, {},
-                                        params.fusion_levels, params.num_threads);
   }
   model->preparation_ms = msSince(start);
   return model;
@@ -375,7 +364,7 @@ PhaserEstimate estimateTransform(const TargetModel& target,
     R = dR * R;
     t = dR * t;
     const Eigen::Vector3d shift =
-        estimateShift(target.steer, (R * points).colwise() + t, none, p, e).shift;
+        estimateShift(fine_geometry, (R * points).colwise() + t, none, p, e).shift;
     t += shift;
     e.passes = pass + 1;
     if (shift.norm() < settled)

@@ -250,9 +250,9 @@ TEST(RealScans, SecondRotationHypothesisRescuesAMirrorPeak)
 {
   // Pose 10 of the KITTI random-pose run (seed 2), range only (PointXYZ): the best
   // SO(3) peak of the first search is a ~168 degree mirror of the truth. With one
-  // hypothesis the registration starts from it and fails (the re-projection passes
-  // leave it 12-177 deg off, depending on the steering grid); with three, the geometric
-  // overlap picks the right one.
+  // hypothesis the registration starts from it and fails (12-177 deg off: the
+  // re-projection passes move it, how far depends on the grids they steer on); with
+  // three, the geometric overlap picks the right one.
   const std::string relative = "lidar/kitti_raw_hdl64/0000000000.bin";
   PCL_PHASER_REQUIRE_DATA(relative);
   const CloudXYZ::Ptr scan = loadXYZ(relative);

@@ -8,6 +8,8 @@
 
 #include <complex>
 #include <cstddef>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace pcl_phaser {
@@ -26,7 +28,10 @@ void* spatialBufferAllocate(std::size_t bytes);
 /** \brief fftw_free wrapper. */
 void spatialBufferFree(void* p) noexcept;
 
-/** \brief std::allocator replacement that returns FFTW-aligned memory. */
+/** \brief std::allocator replacement that returns FFTW-aligned memory. Elements added
+ *  without a value are default-initialised (left as they are for double), not zeroed:
+ *  the volumes and spectra are written whole by the FFTs that fill them, and zeroing
+ *  megabytes first cost a single-threaded pass over each. */
 template <typename T>
 struct SpatialAllocator {
   using value_type = T;
@@ -34,6 +39,16 @@ struct SpatialAllocator {
   template <typename U>
   SpatialAllocator(const SpatialAllocator<U>&) noexcept
   {
+  }
+  template <typename U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>)
+  {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args)
+  {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
   }
   T* allocate(std::size_t n)
   {
