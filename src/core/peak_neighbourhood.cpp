@@ -53,16 +53,20 @@ std::vector<RotationSample> rotationNeighbourhood(const So3CorrelationGrid& grid
 }
 
 std::vector<So3GridIndex> distinctPeaks(const So3CorrelationGrid& grid, int count,
-                                        double min_separation)
+                                        double min_separation, int num_threads)
 {
   const int N = grid.size();
+  const int threads = std::max(1, num_threads);
   struct Candidate {
     double value;
     std::size_t flat;
   };
   // Only samples in the upper half of the value range can be peaks worth reporting; the
-  // 26-neighbour test then runs on few of them.
+  // 26-neighbour test then runs on few of them. Min and max are exact in any order, and
+  // the maxima are gathered per beta row and joined in row order, so the result does
+  // not depend on the thread count.
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+#pragma omp parallel for num_threads(threads) reduction(min : lo) reduction(max : hi)
   for (int j = 0; j < N; ++j)
     for (int a = 0; a < N; ++a)
       for (int c = 0; c < N; ++c) {
@@ -70,7 +74,8 @@ std::vector<So3GridIndex> distinctPeaks(const So3CorrelationGrid& grid, int coun
         hi = std::max(hi, grid(j, a, c));
       }
   const double floor = lo + 0.5 * (hi - lo);
-  std::vector<Candidate> maxima;
+  std::vector<std::vector<Candidate>> rows(static_cast<std::size_t>(N));
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 4)
   for (int j = 0; j < N; ++j)
     for (int a = 0; a < N; ++a)
       for (int c = 0; c < N; ++c) {
@@ -84,8 +89,11 @@ std::vector<So3GridIndex> distinctPeaks(const So3CorrelationGrid& grid, int coun
               if ((dj || da || dc) && valueAt(grid, j + dj, a + da, c + dc) > v)
                 is_max = false;
         if (is_max)
-          maxima.push_back({v, (static_cast<std::size_t>(j) * N + a) * N + c});
+          rows[j].push_back({v, (static_cast<std::size_t>(j) * N + a) * N + c});
       }
+  std::vector<Candidate> maxima;
+  for (const std::vector<Candidate>& row : rows)
+    maxima.insert(maxima.end(), row.begin(), row.end());
   std::sort(maxima.begin(), maxima.end(), [](const Candidate& x, const Candidate& y) {
     return x.value > y.value || (x.value == y.value && x.flat < y.flat);
   });

@@ -133,9 +133,12 @@ estimateShift(const SpatialSpectrum& target, const Eigen::Matrix3Xd& points,
               bool with_score = false, double* energy_product = nullptr)
 {
   const auto t = Clock::now();
-  const SpatialSpectrum S = cloudSpatialSpectrum(target.grid, points, channels,
-                                                 p.fusion_levels, p.num_threads);
-  SpatialVolume C = correlateSpectra(target, S, p.num_threads);
+  SpatialSpectrum S = cloudSpatialSpectrum(target.grid, points, channels,
+                                           p.fusion_levels, p.num_threads);
+  if (energy_product) // |f|^2 |g|^2, for the mismatch of the translation covariance
+    *energy_product = spectrumEnergy(target) * spectrumEnergy(S);
+  // S is not needed afterwards: the product reuses its buffer.
+  SpatialVolume C = correlateSpectra(target, std::move(S), p.num_threads);
   const SpatialCorrelationResult shift =
       findSpatialPeak(C, SpatialPeakRefinement::kGaussian, p.num_threads, with_score);
   if (with_score)
@@ -143,8 +146,6 @@ estimateShift(const SpatialSpectrum& target, const Eigen::Matrix3Xd& points,
   e.translation_ms += msSince(t);
   if (volume)
     *volume = std::move(C);
-  if (energy_product) // |f|^2 |g|^2, for the mismatch of the translation covariance
-    *energy_product = spectrumEnergy(target) * spectrumEnergy(S);
   return shift;
 }
 
@@ -303,9 +304,10 @@ PhaserEstimate estimateTransform(const TargetModel& target,
   So3CorrelationGrid C = correlateRotation(target, H, p, e);
   std::vector<So3GridIndex> peaks;
   if (p.rotation_candidates > 1)
-    peaks = distinctPeaks(C, p.rotation_candidates, kHypothesisSeparation);
+    peaks =
+        distinctPeaks(C, p.rotation_candidates, kHypothesisSeparation, p.num_threads);
   if (peaks.empty())
-    peaks.push_back(C.argmax());
+    peaks.push_back(C.argmax(p.num_threads));
   const double h_norm = std::sqrt(spectrumSquaredNorm(H));
   std::size_t best = 0;
   for (std::size_t k = 0; k < peaks.size(); ++k) {
@@ -359,7 +361,7 @@ PhaserEstimate estimateTransform(const TargetModel& target,
   for (int pass = 1; pass < p.passes; ++pass) {
     H = sourceSpectrum((R * points).colwise() + t, channels, p, e);
     C = correlateRotation(target, H, p, e);
-    peak = C.argmax();
+    peak = C.argmax(p.num_threads);
     const Eigen::Matrix3d dR = rotationFromEuler(gridEuler(peak, p.bandwidth));
     R = dR * R;
     t = dR * t;

@@ -12,7 +12,9 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <utility>
+#include <vector>
 
 namespace pcl_phaser {
 
@@ -169,21 +171,29 @@ So3CorrelationGrid::~So3CorrelationGrid()
     fftw_free(data_);
 }
 
-So3GridIndex So3CorrelationGrid::argmax() const
+So3GridIndex So3CorrelationGrid::argmax(int num_threads) const
 {
+  // The best of each beta row (first on ties), then the rows in order: the first
+  // maximum in flat order whatever the thread count.
   const int N = size();
-  So3GridIndex best;
-  double best_value = -std::numeric_limits<double>::infinity();
+  std::vector<So3GridIndex> best(static_cast<std::size_t>(N));
+  std::vector<double> best_value(static_cast<std::size_t>(N),
+                                 -std::numeric_limits<double>::infinity());
+#pragma omp parallel for num_threads(std::max(1, num_threads)) schedule(static)
   for (int j = 0; j < N; ++j)
     for (int a = 0; a < N; ++a) {
       const double* row = data_ + (static_cast<std::size_t>(j) * N + a) * row_stride_;
       for (int c = 0; c < N; ++c)
-        if (row[c] > best_value) {
-          best_value = row[c];
-          best = {j, a, c};
+        if (row[c] > best_value[j]) {
+          best_value[j] = row[c];
+          best[j] = {j, a, c};
         }
     }
-  return best;
+  std::size_t winner = 0;
+  for (std::size_t j = 1; j < best.size(); ++j)
+    if (best_value[j] > best_value[winner])
+      winner = j;
+  return best.empty() ? So3GridIndex{} : best[winner];
 }
 
 // ---------------------------------------------------------------------------------------

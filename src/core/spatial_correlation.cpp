@@ -265,8 +265,13 @@ SpatialSpectrum computeSpectrum(const SpatialVolume& volume, int num_threads)
   return spectrum;
 }
 
-SpatialVolume correlateSpectra(const SpatialSpectrum& target,
-                               const SpatialSpectrum& source, int num_threads)
+namespace {
+
+/** C = F conj(G) / N written into \a out (which may alias \a source), then the c2r
+ *  (unnormalised; 1/N makes the output the plain sum). */
+SpatialVolume correlateInto(const SpatialSpectrum& target,
+                            const SpatialSpectrum& source, SpatialComplexArray& out,
+                            int num_threads)
 {
   const int threads = resolveThreads(num_threads);
   checkGrid(target.grid, "correlateSpectra (target)");
@@ -281,24 +286,39 @@ SpatialVolume correlateSpectra(const SpatialSpectrum& target,
   if (target.coefficients.size() != m || source.coefficients.size() != m)
     throw InvalidArgument("correlateSpectra: spectrum size does not match its grid");
 
-  // C = F * conj(G) / N: the c2r is unnormalised; 1/N makes the output the plain sum.
   const double scale = 1.0 / static_cast<double>(target.grid.size());
-  SpatialComplexArray product(m);
+  out.resize(m);
   const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(m);
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::ptrdiff_t i = 0; i < count; ++i) {
     const std::complex<double> f = target.coefficients[i], g = source.coefficients[i];
-    product[i] = {(f.real() * g.real() + f.imag() * g.imag()) * scale,
-                  (f.imag() * g.real() - f.real() * g.imag()) * scale};
+    out[i] = {(f.real() * g.real() + f.imag() * g.imag()) * scale,
+              (f.imag() * g.real() - f.real() * g.imag()) * scale};
   }
 
   SpatialVolume correlation;
   correlation.grid = target.grid;
   correlation.grid.origin = target.grid.origin - source.grid.origin;
   correlation.values.resize(target.grid.size());
-  detail::inverseFft3d(target.grid.dims, product.data(), correlation.values.data(),
+  detail::inverseFft3d(target.grid.dims, out.data(), correlation.values.data(),
                        threads);
   return correlation;
+}
+
+} // namespace
+
+SpatialVolume correlateSpectra(const SpatialSpectrum& target,
+                               const SpatialSpectrum& source, int num_threads)
+{
+  SpatialComplexArray product;
+  return correlateInto(target, source, product, num_threads);
+}
+
+SpatialVolume correlateSpectra(const SpatialSpectrum& target, SpatialSpectrum&& source,
+                               int num_threads)
+{
+  SpatialSpectrum consumed = std::move(source);
+  return correlateInto(target, consumed, consumed.coefficients, num_threads);
 }
 
 SpatialCorrelationResult correlateSpatial(const SpatialSpectrum& target,

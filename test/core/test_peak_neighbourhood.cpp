@@ -74,6 +74,22 @@ TEST(PeakNeighbourhood, DistinctPeaksOfASymmetricScene)
       rotationDistance(second, R) < tol && rotationDistance(first, R * half_turn) < tol;
   EXPECT_TRUE(a || b);
   EXPECT_NEAR(C(peaks[0]), C(peaks[1]), 0.05 * C(peaks[0]));
+  // The same peaks, in the same order, and the same argmax with any thread count.
+  for (int threads : {2, 3, 7}) {
+    const std::vector<So3GridIndex> again =
+        distinctPeaks(C, 3, 20.0 * M_PI / 180.0, threads);
+    ASSERT_EQ(again.size(), peaks.size());
+    for (std::size_t k = 0; k < peaks.size(); ++k) {
+      EXPECT_EQ(again[k].beta, peaks[k].beta);
+      EXPECT_EQ(again[k].alpha, peaks[k].alpha);
+      EXPECT_EQ(again[k].gamma, peaks[k].gamma);
+    }
+    const So3GridIndex m1 = C.argmax(), mt = C.argmax(threads);
+    EXPECT_EQ(mt.beta, m1.beta);
+    EXPECT_EQ(mt.alpha, m1.alpha);
+    EXPECT_EQ(mt.gamma, m1.gamma);
+    EXPECT_EQ(C(m1), C(peaks[0])); // the global maximum is the first distinct peak
+  }
 }
 
 TEST(PeakNeighbourhood, TranslationGaussianRecoversABlob)

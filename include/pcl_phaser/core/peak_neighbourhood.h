@@ -36,9 +36,10 @@ std::vector<RotationSample> rotationNeighbourhood(const So3CorrelationGrid& grid
  * min_separation radians from every peak already taken (ties by lowest flat index:
  * deterministic). \param[in] grid the correlation on the Euler grid \param[in] count
  * how many peaks at most \param[in] min_separation geodesic distance between distinct
- * peaks, in radians */
+ * peaks, in radians \param[in] num_threads worker threads (the result does not
+ * depend on them) */
 std::vector<So3GridIndex> distinctPeaks(const So3CorrelationGrid& grid, int count,
-                                        double min_separation);
+                                        double min_separation, int num_threads = 1);
 
 /** \brief A Gaussian on translations, in metres. */
 struct TranslationGaussian {

@@ -37,8 +37,9 @@ public:
     return (*this)(i.beta, i.alpha, i.gamma);
   }
 
-  /** \brief Grid sample with the largest C; ties go to the lowest flat index. */
-  So3GridIndex argmax() const;
+  /** \brief Grid sample with the largest C; ties go to the lowest flat index, for any
+   *  \a num_threads. */
+  So3GridIndex argmax(int num_threads = 1) const;
 
 private:
   friend class So3Correlator;
