@@ -407,10 +407,12 @@ TEST_F(PclPhaserAlign, GroundTruthOnRealScans)
   PCL_PHASER_REQUIRE_DATA(rel + "251370668.pcd");
   PCL_PHASER_REQUIRE_DATA(rel + "relative.txt");
   using pcl_phaser::test::dataPath;
-  const ToolRun r = run(quote(dataPath(rel + "251371071.pcd")) + " " +
-                        quote(dataPath(rel + "251370668.pcd")) + " --gt " +
-                        quote(dataPath(rel + "relative.txt")) + " --json");
-  EXPECT_EQ(r.code, 0) << r.err;
+  const ToolRun r =
+      run(quote(dataPath(rel + "251371071.pcd")) + " " +
+          quote(dataPath(rel + "251370668.pcd")) + " --gt " +
+          quote(dataPath(rel + "relative.txt")) + " --json --centre auto");
+  EXPECT_EQ(r.code, 0)
+      << r.err; // auto: these LiDAR scans are projected about their origin
   Json j;
   ASSERT_TRUE(JsonReader(r.out).document(j)) << r.out;
   Eigen::Matrix4d truth, T;
@@ -499,6 +501,7 @@ TEST_F(PclPhaserAlign, BadInputsFailWithAMessage)
       {"src.pcd tgt.pcd --grid 4", 1},
       {"src.pcd tgt.pcd --passes 9", 1},
       {"src.pcd tgt.pcd --centre middle", 1},
+      {"src.pcd tgt.pcd --centre automatic", 1},
       {"src.pcd tgt.pcd --icp-dist -1", 1},
       {"src.pcd tgt.pcd --icp-dist nan", 1},
       {"src.pcd tgt.pcd --size 640", 1},
