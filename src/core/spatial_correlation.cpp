@@ -115,16 +115,22 @@ SpatialVolume voxelizeImpl(const SpatialGrid& grid, const Eigen::Matrix3Xd& poin
 
   SpatialVolume volume;
   volume.grid = grid;
-  volume.values.assign(grid.size(), 0.0); // first the summed weights W
-  SpatialRealArray weighted;              // summed weight * value S, only with values
+  volume.values.resize(grid.size()); // first the summed weights W
+  SpatialRealArray weighted;         // summed weight * value S, only with values
   if (values)
-    weighted.assign(grid.size(), 0.0);
+    weighted.resize(grid.size());
 
+  const std::size_t slab = static_cast<std::size_t>(ny) * nz;
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (int x = 0; x < nx; ++x) {
-    // Slab x is written by this iteration only and sums its points in a fixed order, so
-    // the result does not depend on the thread count (no racy += into shared voxels).
-    // Splats with lower x index x-1 and x: buckets x and x+1 of the counting sort.
+    // Slab x is zeroed and written by this iteration only and sums its points in a
+    // fixed order, so the result does not depend on the thread count (no racy += into
+    // shared voxels), and the zeroing is spread over the threads too. Splats with lower
+    // x index x-1 and x: buckets x and x+1 of the counting sort.
+    std::fill_n(volume.values.begin() + static_cast<std::ptrdiff_t>(x * slab), slab,
+                0.0);
+    if (values)
+      std::fill_n(weighted.begin() + static_cast<std::ptrdiff_t>(x * slab), slab, 0.0);
     const auto first = splats.begin() + static_cast<std::ptrdiff_t>(slab_start[x]);
     const auto last = splats.begin() + static_cast<std::ptrdiff_t>(slab_start[x + 2]);
     for (auto s = first; s != last; ++s) {
