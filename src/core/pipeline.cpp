@@ -77,6 +77,7 @@ public:
    */
   SpatialSpectrum coarse_geometry, fine_geometry;
   SpatialSpectrum fine; ///< inner region, little padding: the residual of later passes
+  double coarse_energy = 0.0, fine_energy = 0.0; ///< spectrumEnergy of coarse and fine
   double preparation_ms = 0.0;
 };
 
@@ -130,13 +131,13 @@ SpatialCorrelationResult
 estimateShift(const SpatialSpectrum& target, const Eigen::Matrix3Xd& points,
               const ChannelValues& channels, const PhaserParameters& p,
               PhaserEstimate& e, SpatialVolume* volume = nullptr,
-              bool with_score = false, double* energy_product = nullptr)
+              bool with_score = false, double* source_energy = nullptr)
 {
   const auto t = Clock::now();
   SpatialSpectrum S = cloudSpatialSpectrum(target.grid, points, channels,
                                            p.fusion_levels, p.num_threads);
-  if (energy_product) // |f|^2 |g|^2, for the mismatch of the translation covariance
-    *energy_product = spectrumEnergy(target) * spectrumEnergy(S);
+  if (source_energy) // |g|^2, for the mismatch of the translation covariance
+    *source_energy = spectrumEnergy(S);
   // S is not needed afterwards: the product reuses its buffer.
   SpatialVolume C = correlateSpectra(target, std::move(S), p.num_threads);
   const SpatialCorrelationResult shift =
@@ -239,6 +240,7 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
   const SpatialGrid coarse = makeSpatialGrid(points, coarse_grid);
   model->coarse = cloudSpatialSpectrum(coarse, points, channels, params.fusion_levels,
                                        params.num_threads);
+  model->coarse_energy = spectrumEnergy(model->coarse);
   if (!channels.empty())
     model->coarse_geometry = cloudSpatialSpectrum(
         coarse, points, {}, params.fusion_levels, params.num_threads);
@@ -257,6 +259,7 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
     const SpatialGrid fine = makeSpatialGrid(inner, fine_grid);
     model->fine = cloudSpatialSpectrum(fine, inner, inner_channels,
                                        params.fusion_levels, params.num_threads);
+    model->fine_energy = spectrumEnergy(model->fine);
     if (!channels.empty())
       model->fine_geometry = cloudSpatialSpectrum(fine, inner, {}, params.fusion_levels,
                                                   params.num_threads);
@@ -345,7 +348,8 @@ PhaserEstimate estimateTransform(const TargetModel& target,
     const SpatialCorrelationResult shift = estimateShift(
         target.coarse, R * points, channels, p, e, &last_shift, true, &energy);
     t = shift.shift;
-    e.translation_covariance = translationCovariance(last_shift, shift.index, energy);
+    e.translation_covariance =
+        translationCovariance(last_shift, shift.index, target.coarse_energy * energy);
     rotationSamples(C, peak, R, e);
     e.rotation = R;
     e.translation = t;
@@ -387,7 +391,8 @@ PhaserEstimate estimateTransform(const TargetModel& target,
       estimateShift(target.fine, (R * points).colwise() + t, channels, p, e,
                     &last_shift, true, &energy);
   t += shift.shift;
-  e.translation_covariance = translationCovariance(last_shift, shift.index, energy);
+  e.translation_covariance =
+      translationCovariance(last_shift, shift.index, target.fine_energy * energy);
   rotationSamples(C, peak, R, e);
   e.rotation_score =
       value / (target.spherical_norm * std::sqrt(spectrumSquaredNorm(H_final)));
