@@ -139,8 +139,10 @@ public:
   /** \brief Get the explicit voxel size (0 when derived from the grid size). */
   double getVoxelSize() const { return params_.voxel_size; }
 
-  /** \brief Set the number of Newton iterations that refine the rotation peak (0..10).
-   *  Default 3. \param[in] iterations number of iterations */
+  /** \brief Set the number of Newton iterations that refine the rotation peak (0..10),
+   *  on plain correlation and again on the normalised one (setNormalizedRefinement).
+   *  Default 2: a third changed the simulated demo pairs' errors by < 0.01 deg.
+   *  \param[in] iterations number of iterations */
   void setRefinementIterations(int iterations)
   {
     params_.refinement_iterations = iterations;
@@ -164,13 +166,14 @@ public:
   /** \brief Get the number of passes. */
   int getNumberOfPasses() const { return params_.passes; }
 
-  /** \brief Refine the rotation on the energy-normalised SO(3) correlation (default
-   *  false). Plain correlation leans towards equal sensor tilt when the two sensors are
-   *  rolled or pitched against each other (their field-of-view edges overlap best at
-   *  equal tilt: 1.2-1.4 deg on the simulated demo pairs); the normalised one removes
-   *  that (0.3-0.4 deg) for about 10 ms more CPU per align. Off by default because the
-   *  translation score of such pairs then falls under the default minimum peak score
-   *  (doc/benchmarks.md section 6).
+  /** \brief Refine the rotation further on the energy-normalised SO(3) correlation,
+   *  within 1 deg of the maximum of the plain one, when the clouds are projected about
+   *  their sensor origins (default true). Plain correlation leans towards equal sensor
+   *  tilt when two scanners are rolled or pitched against each other (their
+   *  field-of-view bands overlap best at equal tilt: 1.2-1.4 deg on the simulated demo
+   *  pairs); the normalised one removes most of that (0.3-0.5 deg) for about 7 ms
+   *  more per align (doc/benchmarks.md section 6). About the centroid (object scans)
+   *  there is no such band and the plain refinement is kept.
    *  \param[in] normalized whether to normalise */
   void setNormalizedRefinement(bool normalized)
   {
@@ -243,14 +246,33 @@ public:
    *  what it chose (SensorOrigin or Centroid). */
   ProjectionCenter getUsedProjectionCenter() const { return used_center_; }
 
-  /** \brief Set the smallest translation peak score (peak-to-sidelobe ratio of the
-   *  Laplacian of the final 3-D correlation) for which hasConverged() is true. Default
-   *  20: on the shared scans correct registrations scored 24-112 and registrations of
-   *  unrelated scenes 7-18 (see doc/benchmarks.md).
+  /** \brief Set the translation peak score (peak-to-sidelobe ratio of the Laplacian
+   *  of the final 3-D correlation) above which hasConverged() is true. Default 20:
+   *  identical scans score 56-132 and registrations of unrelated scenes at most 19.
+   *  Half of it suffices when the aligned clouds also overlap well
+   *  (getNormalizedOverlap() >= getMinimumNormalizedOverlap()); see doc/benchmarks.md
+   *  section 5.
    *  \param[in] score the threshold (>= 0) */
   void setMinimumPeakScore(double score) { min_peak_score_ = score; }
   /** \brief Get the smallest translation peak score that counts as converged. */
   double getMinimumPeakScore() const { return min_peak_score_; }
+
+  /** \brief Set the normalised overlap (getNormalizedOverlap()) from which a peak
+   *  score of half the minimum suffices for hasConverged(). Default 0.55: correct
+   *  registrations of scans from viewpoints metres apart overlap 0.59-0.83 but their
+   *  peak score can fall to 12 (the peak is wider than that of a scan against itself),
+   *  while wrong registrations on the shared scans overlapped at most 0.47.
+   *  \param[in] overlap the threshold, in [0, 1] */
+  void setMinimumNormalizedOverlap(double overlap)
+  {
+    min_normalized_overlap_ = overlap;
+  }
+  /** \brief Get the normalised overlap from which half the peak score suffices. */
+  double getMinimumNormalizedOverlap() const { return min_normalized_overlap_; }
+
+  /** \brief Cosine similarity of the aligned voxel grids (peak of the final 3-D
+   *  correlation over the norms of the two grids), in [-1, 1]. */
+  double getNormalizedOverlap() const { return estimate_.normalized_overlap; }
 
   /** \brief Normalised SO(3) correlation at the estimated rotation, in [-1, 1]. */
   double getRotationScore() const { return estimate_.rotation_score; }
@@ -362,6 +384,7 @@ private:
   ProjectionCenter center_ = ProjectionCenter::SensorOrigin;
   std::uint32_t channel_mask_ = ~0u;
   double min_peak_score_ = 20.0;
+  double min_normalized_overlap_ = 0.55;
   std::shared_ptr<const pcl_phaser::TargetModel> target_model_;
   ProjectionCenter model_center_ = ProjectionCenter::SensorOrigin; ///< of target_model_
   ProjectionCenter used_center_ = ProjectionCenter::SensorOrigin;

@@ -106,19 +106,22 @@ So3CorrelationGrid correlateRotation(const TargetModel& target,
   return C;
 }
 
-/** Newton refinement of \a R, timed; with PhaserParameters::normalized_refinement on
- *  the energy-normalised correlation (see refineRotation: plain C leans towards equal
- *  sensor tilt), whose supports are then given. Returns the exact C there through \a
- *  value. */
+/** Newton refinement of \a R on C, timed; with PhaserParameters::normalized_refinement
+ *  then on the energy-normalised correlation (see refineRotation: plain C leans towards
+ *  equal sensor tilt) near that maximum, with the supports given. Returns the exact C
+ *  at the result through \a value. */
 Eigen::Matrix3d refine(const TargetModel& target, const SphericalSpectrum& H,
                        const SphericalSupport& support, const Eigen::Matrix3d& R,
                        const PhaserParameters& p, double& value, PhaserEstimate& e)
 {
   const auto t = Clock::now();
-  const RefinedRotation refined = refineRotation(
-      target.spherical, H, R, p.bandwidth, p.refinement_iterations, p.num_threads,
-      p.normalized_refinement ? &target.spherical_support : nullptr,
-      p.normalized_refinement ? &support : nullptr);
+  RefinedRotation refined = refineRotation(target.spherical, H, R, p.bandwidth,
+                                           p.refinement_iterations, p.num_threads);
+  if (p.normalized_refinement)
+    refined = refineRotation(target.spherical, H, refined.rotation, p.bandwidth,
+                             p.refinement_iterations, p.num_threads,
+                             &target.spherical_support, &support,
+                             kNormalizedRefinementRadius);
   value = refined.value;
   e.refinement_ms += msSince(t);
   return refined.rotation;
@@ -148,6 +151,12 @@ estimateShift(const SpatialSpectrum& target, const Eigen::Matrix3Xd& points,
   if (volume)
     *volume = std::move(C);
   return shift;
+}
+
+/** Correlation peak over the norms of the two grids (0 when one is empty). */
+double normalizedPeak(double peak, double energy_product)
+{
+  return energy_product > 0.0 ? peak / std::sqrt(energy_product) : 0.0;
 }
 
 /** Grid samples around a peak as rotations of the final estimate: each sample's offset
@@ -348,6 +357,8 @@ PhaserEstimate estimateTransform(const TargetModel& target,
     const SpatialCorrelationResult shift = estimateShift(
         target.coarse, R * points, channels, p, e, &last_shift, true, &energy);
     t = shift.shift;
+    e.normalized_overlap =
+        normalizedPeak(shift.peak_value, target.coarse_energy * energy);
     e.translation_covariance =
         translationCovariance(last_shift, shift.index, target.coarse_energy * energy);
     rotationSamples(C, peak, R, e);
@@ -391,6 +402,7 @@ PhaserEstimate estimateTransform(const TargetModel& target,
       estimateShift(target.fine, (R * points).colwise() + t, channels, p, e,
                     &last_shift, true, &energy);
   t += shift.shift;
+  e.normalized_overlap = normalizedPeak(shift.peak_value, target.fine_energy * energy);
   e.translation_covariance =
       translationCovariance(last_shift, shift.index, target.fine_energy * energy);
   rotationSamples(C, peak, R, e);

@@ -46,13 +46,14 @@ std::array<Eigen::Vector3d, 19> makeStencil()
 
 } // namespace
 
-RefinedRotation refineRotation(const SphericalSpectrum& target,
-                               const SphericalSpectrum& source,
-                               const Eigen::Matrix3d& start, int output_bandwidth,
-                               int iterations, int num_threads,
-                               const SphericalSupport* target_support,
-                               const SphericalSupport* source_support)
+RefinedRotation
+refineRotation(const SphericalSpectrum& target, const SphericalSpectrum& source,
+               const Eigen::Matrix3d& start, int output_bandwidth, int iterations,
+               int num_threads, const SphericalSupport* target_support,
+               const SphericalSupport* source_support, double max_distance)
 {
+  if (!(max_distance >= 0.0))
+    throw InvalidArgument("refineRotation: max_distance must be >= 0");
   checkBandwidth(output_bandwidth, "output bandwidth");
   if (!target_support != !source_support)
     throw InvalidArgument("refineRotation: give the supports of both signals or none");
@@ -125,6 +126,11 @@ RefinedRotation refineRotation(const SphericalSpectrum& target,
         delta *= max_step / delta.norm();
     }
     current = current * expMap(delta);
+    // Inside the trust region around the start: project a step that leaves it onto its
+    // boundary (along the geodesic from the start).
+    const Eigen::AngleAxisd away(start.transpose() * current);
+    if (away.angle() > max_distance)
+      current = start * Eigen::AngleAxisd(max_distance, away.axis()).toRotationMatrix();
     h *= 0.5;
     best.iterations = it + 1;
   }

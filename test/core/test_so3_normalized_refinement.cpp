@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 using namespace pcl_phaser;
@@ -22,6 +23,29 @@ using namespace pcl_phaser;
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
+
+/** Samples of 8 weighted lobes over the whole sphere (f) and of the same lobes rotated
+ *  back by \a rotation (h): f = h(rotation^-1 .). */
+struct LobePair {
+  Eigen::Matrix3d rotation;
+  std::vector<double> f, h;
+};
+
+LobePair makeLobePair(int B, std::mt19937& rng)
+{
+  LobePair p;
+  p.rotation = test::randomRotation(rng);
+  std::vector<Eigen::Vector3d> src, tgt;
+  std::vector<double> w;
+  for (int i = 0; i < 8; ++i) {
+    src.push_back(test::randomRotation(rng).col(0));
+    tgt.push_back(p.rotation * src.back());
+    w.push_back(1.0 + 0.3 * i);
+  }
+  p.f = test::lobeSamples(B, tgt, w, 0.6 * B);
+  p.h = test::lobeSamples(B, src, w, 0.6 * B);
+  return p;
+}
 
 TEST(So3NormalizedRefinement, SharedEvaluationEqualsSinglePairsBitForBit)
 {
@@ -58,6 +82,42 @@ TEST(So3NormalizedRefinement, RejectsIncompleteArguments)
   const SphericalSupport support{A, A};
   EXPECT_THROW(refineRotation(A, A, Eigen::Matrix3d::Identity(), 4, 3, 1, &support),
                InvalidArgument);
+  EXPECT_THROW(refineRotation(A, A, Eigen::Matrix3d::Identity(), 4, 3, 1, nullptr,
+                              nullptr, -1.0),
+               InvalidArgument);
+  EXPECT_THROW(refineRotation(A, A, Eigen::Matrix3d::Identity(), 4, 3, 1, nullptr,
+                              nullptr, std::nan("")),
+               InvalidArgument);
+}
+
+/** The trust region: from a start 2 grid cells from the maximum, the ascent stops on
+ *  the boundary of the region (radius 0: the start itself); a region that holds the
+ *  maximum changes nothing. */
+TEST(So3NormalizedRefinement, TrustRegionBoundsTheStep)
+{
+  const int B = 16;
+  std::mt19937 rng(9);
+  const auto sht = SphericalHarmonicTransform::instance(B);
+  const LobePair lobes = makeLobePair(B, rng);
+  const Eigen::Matrix3d& R = lobes.rotation;
+  const SphericalSpectrum F = sht->forward(lobes.f.data());
+  const SphericalSpectrum H = sht->forward(lobes.h.data());
+  const double cell = M_PI / (2 * B);
+  const Eigen::Matrix3d start =
+      Eigen::AngleAxisd(2.0 * cell, Eigen::Vector3d(3, -1, 2).normalized()) * R;
+  const RefinedRotation free = refineRotation(F, H, start, B, 6, 1);
+  EXPECT_LT(rotationDistance(free.rotation, R), 0.01 * kDeg);
+  const RefinedRotation bounded =
+      refineRotation(F, H, start, B, 6, 1, nullptr, nullptr, 0.5 * cell);
+  EXPECT_LE(rotationDistance(bounded.rotation, start), 0.5 * cell * (1 + 1e-9));
+  EXPECT_GT(rotationDistance(bounded.rotation, start), 0.4 * cell); // it did climb
+  EXPECT_LT(rotationDistance(bounded.rotation, R), rotationDistance(start, R));
+  const RefinedRotation fixed =
+      refineRotation(F, H, start, B, 6, 1, nullptr, nullptr, 0.0);
+  EXPECT_LT(rotationDistance(fixed.rotation, start), 1e-9);
+  const RefinedRotation wide =
+      refineRotation(F, H, start, B, 6, 1, nullptr, nullptr, 4.0 * cell);
+  EXPECT_LT(rotationDistance(wide.rotation, R), 0.01 * kDeg);
 }
 
 /** Lobes over the whole sphere (every cell observed): the energy terms are then
@@ -68,16 +128,9 @@ TEST(So3NormalizedRefinement, FullyObservedSignalsKeepTheExactRotation)
   std::mt19937 rng(5);
   const auto sht = SphericalHarmonicTransform::instance(B);
   for (int trial = 0; trial < 3; ++trial) {
-    const Eigen::Matrix3d R = test::randomRotation(rng);
-    std::vector<Eigen::Vector3d> src, tgt;
-    std::vector<double> w;
-    for (int i = 0; i < 8; ++i) {
-      src.push_back(test::randomRotation(rng).col(0));
-      tgt.push_back(R * src.back());
-      w.push_back(1.0 + 0.3 * i);
-    }
-    const std::vector<double> f = test::lobeSamples(B, tgt, w, 0.6 * B);
-    const std::vector<double> h = test::lobeSamples(B, src, w, 0.6 * B);
+    const LobePair lobes = makeLobePair(B, rng);
+    const Eigen::Matrix3d& R = lobes.rotation;
+    const std::vector<double>&f = lobes.f, &h = lobes.h;
     std::vector<double> f2 = f, h2 = h, ones(f.size(), 1.0);
     for (std::size_t c = 0; c < f.size(); ++c) {
       f2[c] *= f[c];

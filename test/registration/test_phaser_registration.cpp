@@ -132,18 +132,56 @@ TEST(PhaserRegistration, RecoversKnownPoseSensorOrigin)
   const auto target = makeScene<pcl::PointXYZ>();
   for (const Eigen::Matrix4f& T : {makePose({0, 0, 1}, 2.3, {1.2, -0.7, 0.1}),
                                    makePose({1, 2, 3}, -1.4, {-0.4, 1.5, 0.3}),
-                                   makePose({0.3, -1, 0.2}, 0.9, {0.0, 0.0, 0.0})}) {
-    pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
-    phaser.setInputSource(seenFrom(*target, T));
-    phaser.setInputTarget(target);
-    CloudXYZ out;
+                                   makePose({0.3, -1, 0.2}, 0.9, {0.0, 0.0, 0.0})})
+    for (bool normalized : {false, true}) {
+      pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+      phaser.setNormalizedRefinement(normalized);
+      phaser.setInputSource(seenFrom(*target, T));
+      phaser.setInputTarget(target);
+      CloudXYZ out;
+      phaser.align(out);
+      ASSERT_TRUE(phaser.hasConverged());
+      // On this small synthetic room the normalised refinement costs up to 0.3 deg (it
+      // gains on the real scans and the simulated LiDAR pairs: doc/benchmarks.md 6).
+      EXPECT_LT(rotationErrorDeg(phaser.getFinalTransformation(), T),
+                normalized ? 0.75 : 0.5);
+      EXPECT_LT(translationError(phaser.getFinalTransformation(), T), 0.05);
+      EXPECT_EQ(out.size(), target->size());
+      EXPECT_LT(phaser.getFitnessScore(), 0.05);
+    }
+}
+
+TEST(PhaserRegistration, ConvergenceNeedsAPeakScoreOrHalfOfItAndAClearOverlap)
+{
+  const auto target = makeScene<pcl::PointXYZ>();
+  const auto source = seenFrom(*target, makePose({0, 0, 1}, 2.3, {1.2, -0.7, 0.1}));
+  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+  phaser.setInputSource(source);
+  phaser.setInputTarget(target);
+  CloudXYZ out;
+  phaser.align(out);
+  const double score = phaser.getTranslationScore();
+  const double overlap = phaser.getNormalizedOverlap();
+  ASSERT_TRUE(phaser.hasConverged());
+  EXPECT_GT(overlap, 0.7); // the same room: the aligned grids nearly coincide
+  EXPECT_LE(overlap, 1.0);
+  const auto convergesWith = [&](double min_score, double min_overlap) {
+    phaser.setMinimumPeakScore(min_score);
+    phaser.setMinimumNormalizedOverlap(min_overlap);
     phaser.align(out);
-    ASSERT_TRUE(phaser.hasConverged());
-    EXPECT_LT(rotationErrorDeg(phaser.getFinalTransformation(), T), 0.5);
-    EXPECT_LT(translationError(phaser.getFinalTransformation(), T), 0.05);
-    EXPECT_EQ(out.size(), target->size());
-    EXPECT_LT(phaser.getFitnessScore(), 0.05);
-  }
+    return phaser.hasConverged();
+  };
+  EXPECT_TRUE(convergesWith(score, 1.0));           // the score alone
+  EXPECT_FALSE(convergesWith(1.01 * score, 1.0));   // neither
+  EXPECT_TRUE(convergesWith(1.9 * score, overlap)); // half the score and the overlap
+  EXPECT_FALSE(convergesWith(1.9 * score, std::min(1.0, overlap + 1e-3)));
+  EXPECT_FALSE(convergesWith(2.1 * score, 0.0)); // not even half the score
+  // An unrelated room overlaps little.
+  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> unrelated;
+  unrelated.setInputSource(makeScene<pcl::PointXYZ>(6, 300));
+  unrelated.setInputTarget(target);
+  unrelated.align(out);
+  EXPECT_LT(unrelated.getNormalizedOverlap(), 0.5 * overlap);
 }
 
 TEST(PhaserRegistration, CentroidModeHandlesLargeOffsets)
@@ -520,6 +558,12 @@ TEST(PhaserRegistrationBadInput, ParametersOutOfRange)
   check([](auto& p) { p.setRefinementIterations(-1); });
   check([](auto& p) { p.setNumberOfThreads(0); });
   check([](auto& p) { p.setNumberOfThreads(100000); });
+  check([](auto& p) { p.setMinimumPeakScore(-1.0); });
+  check([](auto& p) { p.setMinimumNormalizedOverlap(-0.1); });
+  check([](auto& p) { p.setMinimumNormalizedOverlap(1.5); });
+  check([](auto& p) {
+    p.setMinimumNormalizedOverlap(std::numeric_limits<double>::quiet_NaN());
+  });
 }
 
 TEST(PhaserRegistrationBadInput, NonFiniteGuess)

@@ -39,6 +39,8 @@ struct MethodResult {
   /** the method's own quality figure: pcl_phaser's translation peak score, else
    * PCL's fitness score (mean squared distance, m^2) */
   double score = std::numeric_limits<double>::quiet_NaN();
+  /** pcl_phaser's normalised overlap of the aligned grids (NaN for other methods) */
+  double overlap = std::numeric_limits<double>::quiet_NaN();
   bool has_covariance = false;
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
 };

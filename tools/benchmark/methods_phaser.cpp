@@ -34,6 +34,7 @@ MethodResult align(const typename pcl::PointCloud<PointP>::ConstPtr& source,
   result.transformation = phaser.getFinalTransformation().template cast<double>();
   result.converged = phaser.hasConverged();
   result.score = phaser.getTranslationScore();
+  result.overlap = phaser.getNormalizedOverlap();
   if (result.converged) {
     result.covariance = phaser.getCovariance();
     result.has_covariance = true;

@@ -286,6 +286,7 @@ private:
     trial.converged = r.converged;
     trial.success = trial.rre_deg < o_.rre_threshold && trial.rte_m < rte_threshold;
     trial.score = r.score;
+    trial.overlap = r.overlap;
     if (r.has_covariance) {
       // The error as getCovariance() orders it: omega = Log(R_true R_est^T), nu =
       // t_true

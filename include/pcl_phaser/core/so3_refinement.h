@@ -8,6 +8,8 @@
 
 #include <Eigen/Core>
 
+#include <limits>
+
 namespace pcl_phaser {
 
 /** \brief Result of the sub-grid refinement of a correlation peak. */
@@ -48,12 +50,14 @@ struct SphericalSupport {
  *  \param[in] num_threads worker threads
  *  \param[in] target_support, source_support supports of the two signals (both or
  *  neither); null: plain C
- *  \throws InvalidArgument when only one support is given */
-RefinedRotation refineRotation(const SphericalSpectrum& target,
-                               const SphericalSpectrum& source,
-                               const Eigen::Matrix3d& start, int output_bandwidth,
-                               int iterations = 3, int num_threads = 1,
-                               const SphericalSupport* target_support = nullptr,
-                               const SphericalSupport* source_support = nullptr);
+ *  \param[in] max_distance radius (radians) of the trust region around \a start: a
+ *  step that would leave it ends on its boundary
+ *  \throws InvalidArgument when only one support is given or max_distance < 0 */
+RefinedRotation
+refineRotation(const SphericalSpectrum& target, const SphericalSpectrum& source,
+               const Eigen::Matrix3d& start, int output_bandwidth, int iterations = 3,
+               int num_threads = 1, const SphericalSupport* target_support = nullptr,
+               const SphericalSupport* source_support = nullptr,
+               double max_distance = std::numeric_limits<double>::infinity());
 
 } // namespace pcl_phaser

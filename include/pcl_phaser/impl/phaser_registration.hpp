@@ -156,6 +156,8 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
     return fail(output, guess, problem);
   if (!(min_peak_score_ >= 0.0))
     return fail(output, guess, "the minimum peak score must be >= 0");
+  if (!(min_normalized_overlap_ >= 0.0 && min_normalized_overlap_ <= 1.0))
+    return fail(output, guess, "the minimum normalised overlap must be in [0, 1]");
   const Eigen::Matrix4d G = guess.template cast<double>();
   if (!G.allFinite())
     return fail(output, guess, "the initial guess is not finite");
@@ -193,6 +195,12 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
                                                         src, G.topRightCorner<3, 1>())
                          ? ProjectionCenter::SensorOrigin
                          : ProjectionCenter::Centroid;
+    // The tilt pull the normalised refinement corrects comes from a scanner's
+    // field-of-view band, seen about its origin; about an object's centroid there is
+    // none, and it measured worse there (bunny pair 6.7 -> 7.2 deg).
+    pcl_phaser::PhaserParameters params = params_;
+    params.normalized_refinement =
+        params_.normalized_refinement && used_center_ == ProjectionCenter::SensorOrigin;
     // The target model: prepared once per target, parameter set and centre, relative
     // to the target's centre.
     if (!target_model_ || model_center_ != used_center_) {
@@ -202,7 +210,7 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
                            ? Eigen::Vector3d(tgt.rowwise().mean())
                            : Eigen::Vector3d::Zero();
       tgt.colwise() -= target_center_;
-      target_model_ = pcl_phaser::prepareTarget(tgt, params_, target_channels);
+      target_model_ = pcl_phaser::prepareTarget(tgt, params, target_channels);
       model_center_ = used_center_;
       target_ms = pcl_phaser::preparationTime(*target_model_);
     }
@@ -211,7 +219,7 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
                         : Eigen::Vector3d(G.topRightCorner<3, 1>());
     src.colwise() -= source_center;
     estimate_ =
-        pcl_phaser::estimateTransform(*target_model_, src, params_, source_channels);
+        pcl_phaser::estimateTransform(*target_model_, src, params, source_channels);
     estimate_.target_ms = target_ms;
   } catch (const pcl_phaser::InvalidArgument& e) {
     return fail(output, guess, e.what());
@@ -242,12 +250,17 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
     candidates_.push_back(candidate);
   }
   // A distinct translation peak is the evidence that the rotated source really overlaps
-  // the target; unrelated scenes give flat correlations.
-  converged_ = estimate_.translation_score >= min_peak_score_;
+  // the target; unrelated scenes give flat correlations. Scans taken metres apart give
+  // wider peaks, so a clear overlap of the aligned grids lets half the score suffice.
+  converged_ = estimate_.translation_score >= min_peak_score_ ||
+               (estimate_.translation_score >= 0.5 * min_peak_score_ &&
+                estimate_.normalized_overlap >= min_normalized_overlap_);
   if (!converged_)
-    PCL_DEBUG("[pcl::%s::computeTransformation] translation peak score %g is below %g: "
-              "not converged\n",
-              getClassName().c_str(), estimate_.translation_score, min_peak_score_);
+    PCL_DEBUG("[pcl::%s::computeTransformation] translation peak score %g (normalised "
+              "overlap %g) is below %g (%g with an overlap of %g): not converged\n",
+              getClassName().c_str(), estimate_.translation_score,
+              estimate_.normalized_overlap, min_peak_score_, 0.5 * min_peak_score_,
+              min_normalized_overlap_);
   phaser_detail::transformWhole(*input_, output, final_transformation_);
 }
 
