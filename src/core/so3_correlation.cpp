@@ -69,11 +69,11 @@ struct WignerScratch {
  * per instruction), SSE2 elsewhere. No -march=native anywhere (see the integration
  * notes). The choice depends on the machine only, never on the thread count. */
 [[gnu::target_clones("avx2", "default")]] void
-wignerAccumulate(int L, int B, int J, int mp, int m, const double* __restrict cb,
-                 const double* __restrict c1, const double* __restrict c2,
-                 double* __restrict d0, double* __restrict d1, double* __restrict d2,
-                 double* __restrict a1r, double* __restrict a1i, double* __restrict a2r,
-                 double* __restrict a2i)
+wignerAccumulate(const WignerStepTable& steps, int L, int B, int J, int mp, int m,
+                 const double* __restrict cb, const double* __restrict c1,
+                 const double* __restrict c2, double* __restrict d0,
+                 double* __restrict d1, double* __restrict d2, double* __restrict a1r,
+                 double* __restrict a1i, double* __restrict a2r, double* __restrict a2i)
 {
   double* dprev = d0;
   double* dpp = d1;
@@ -94,7 +94,7 @@ wignerAccumulate(int L, int B, int J, int mp, int m, const double* __restrict cb
       a2i[j] += c2i * d;
     }
     if (l + 1 < B) {
-      const WignerStep st = wignerStep(l, mp, m);
+      const WignerStep st = steps.step(l, mp, m);
       for (int j = 0; j < J; ++j)
         dnext[j] = (st.a * cb[j] + st.ac) * dprev[j] - st.b * dpp[j];
       double* tmp = dpp; // dpp <- d^l, dprev <- d^{l+1}
@@ -111,8 +111,8 @@ wignerAccumulate(int L, int B, int J, int mp, int m, const double* __restrict cb
  *  parts (P rows of K). Each sequence sees the same operations in the same order as
  *  if it were alone. Dispatched like wignerAccumulate. */
 [[gnu::target_clones("avx2", "default")]] void
-evaluateAccumulate(int L, int B, int K, int P, int mp, int m,
-                   const double* __restrict cb, const double* __restrict c,
+evaluateAccumulate(const WignerStepTable& steps, int L, int B, int K, int P, int mp,
+                   int m, const double* __restrict cb, const double* __restrict c,
                    double* __restrict d0, double* __restrict d1, double* __restrict d2,
                    double* __restrict acc_re, double* __restrict acc_im)
 {
@@ -134,7 +134,7 @@ evaluateAccumulate(int L, int B, int K, int P, int mp, int m,
       }
     }
     if (l + 1 < B) {
-      const WignerStep st = wignerStep(l, mp, m);
+      const WignerStep st = steps.step(l, mp, m);
       for (int k = 0; k < K; ++k)
         dnext[k] = (st.a * cb[k] + st.ac) * dprev[k] - st.b * dpp[k];
       double* tmp = dpp;
@@ -216,6 +216,7 @@ std::shared_ptr<const So3Correlator> So3Correlator::instance(int bandwidth,
 So3Correlator::So3Correlator(int bandwidth, int output_bandwidth)
     : bandwidth_(bandwidth)
     , output_bandwidth_(output_bandwidth ? output_bandwidth : bandwidth)
+    , steps_(bandwidth)
     , plan_(std::make_unique<Plan>())
 {
   checkBandwidth(bandwidth_);
@@ -291,7 +292,7 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
         const WignerStart start = wignerStart(mp, m, log_factorials_);
         for (int j = 0; j < J; ++j)
           w.d0[j] = start.value(log_cos_half_[j], log_sin_half_[j]);
-        wignerAccumulate(L, B, J, mp, m, cb,
+        wignerAccumulate(steps_, L, B, J, mp, m, cb,
                          reinterpret_cast<const double*>(w.c1.data()),
                          reinterpret_cast<const double*>(w.c2.data()), w.d0.data(),
                          w.d1.data(), w.d2.data(), w.acc1_re.data(), w.acc1_im.data(),
@@ -346,6 +347,14 @@ evaluateCorrelations(const std::vector<SpectrumPair>& pairs,
     ls[k] = std::log(std::sin(0.5 * euler[k].beta));
   }
   const std::vector<double> lf = logFactorials(2 * B + 1);
+  const WignerStepTable steps(B);
+  // e^{-i m' alpha_k} for every order m' and rotation k, once: inside the loop over
+  // (m, m') it would be B times as many sincos.
+  std::vector<Complex> turn_table(static_cast<std::size_t>(2 * B - 1) * K);
+  for (int mp = -(B - 1); mp < B; ++mp)
+    for (int k = 0; k < K; ++k)
+      turn_table[static_cast<std::size_t>(mp + B - 1) * K + k] =
+          std::polar(1.0, -mp * euler[k].alpha);
   // Per-order partial sums, reduced in a fixed order: identical for any thread count.
   const std::size_t PK = static_cast<std::size_t>(P) * K;
   std::vector<double> partial(static_cast<std::size_t>(B) * PK, 0.0);
@@ -353,7 +362,7 @@ evaluateCorrelations(const std::vector<SpectrumPair>& pairs,
 #pragma omp parallel num_threads(std::max(1, num_threads))
   {
     std::vector<double> d0(K), d1(K), d2(K), acc_re(PK), acc_im(PK);
-    std::vector<Complex> sum_mp(PK), c(static_cast<std::size_t>(P) * B), turn(K);
+    std::vector<Complex> sum_mp(PK), c(static_cast<std::size_t>(P) * B);
 #pragma omp for schedule(dynamic, 1)
     for (int m = 0; m < B; ++m) {
       std::fill(sum_mp.begin(), sum_mp.end(), Complex(0.0));
@@ -367,11 +376,10 @@ evaluateCorrelations(const std::vector<SpectrumPair>& pairs,
             c[static_cast<std::size_t>(q) * B + l] =
                 std::conj(coefficient(*pairs[q].target, l, mp)) *
                 (*pairs[q].source)(l, m);
-        evaluateAccumulate(L, B, K, P, mp, m, cb.data(),
+        evaluateAccumulate(steps, L, B, K, P, mp, m, cb.data(),
                            reinterpret_cast<const double*>(c.data()), d0.data(),
                            d1.data(), d2.data(), acc_re.data(), acc_im.data());
-        for (int k = 0; k < K; ++k)
-          turn[k] = std::polar(1.0, -mp * euler[k].alpha);
+        const Complex* turn = &turn_table[static_cast<std::size_t>(mp + B - 1) * K];
         for (std::size_t i = 0; i < PK; ++i)
           sum_mp[i] += turn[i % K] * Complex(acc_re[i], acc_im[i]);
       }

@@ -73,6 +73,29 @@ WignerStep wignerStep(int l, int mp, int m)
   return {a, a * cc, b};
 }
 
+WignerStepTable::WignerStepTable(int bandwidth)
+{
+  checkBandwidth(bandwidth);
+  const int n = bandwidth + 1;
+  stride_ = static_cast<std::size_t>(n);
+  root_.assign(stride_ * n, 0.0);
+  inv_root_.assign(stride_ * n, 0.0);
+  for (int l = 0; l < n; ++l)
+    for (int m = 0; m < l; ++m) {
+      root_[index(l, m)] =
+          std::sqrt(static_cast<double>(l) * l - static_cast<double>(m) * m);
+      inv_root_[index(l, m)] = 1.0 / root_[index(l, m)];
+    }
+  growth_.assign(n, 0.0);
+  ratio_.assign(n, 0.0);
+  inv_ll1_.assign(n, 0.0);
+  for (int l = 1; l < n; ++l) {
+    growth_[l] = (l + 1.0) * (2.0 * l + 1.0);
+    ratio_[l] = (l + 1.0) / l;
+    inv_ll1_[l] = 1.0 / (static_cast<double>(l) * (l + 1.0));
+  }
+}
+
 std::vector<double> wignerSmallD(int mp, int m, int bandwidth, double beta)
 {
   checkBandwidth(bandwidth);

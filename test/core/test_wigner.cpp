@@ -6,12 +6,14 @@
  */
 #include "so3_test_support.h"
 
+#include <pcl_phaser/core/error.h>
 #include <pcl_phaser/core/so3_grid.h>
 #include <pcl_phaser/core/spherical_grid.h>
 #include <pcl_phaser/core/wigner.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -53,6 +55,24 @@ TEST(Wigner, OrthogonalityUpTo256)
       }
     EXPECT_LT(worst, 1e-12) << "m'=" << mp << " m=" << m;
   }
+}
+
+TEST(Wigner, StepTableEqualsTheDirectSteps)
+{
+  const int B = 40;
+  const WignerStepTable table(B);
+  double worst = 0.0;
+  for (int m = -(B - 1); m < B; ++m)
+    for (int mp = -(B - 1); mp < B; ++mp)
+      for (int l = std::max(std::abs(m), std::abs(mp)); l + 1 < B; ++l) {
+        const WignerStep direct = wignerStep(l, mp, m), tabled = table.step(l, mp, m);
+        for (auto [x, y] :
+             {std::pair{direct.a, tabled.a}, std::pair{direct.ac, tabled.ac},
+              std::pair{direct.b, tabled.b}})
+          worst = std::max(worst, std::abs(x - y) / std::max(1.0, std::abs(x)));
+      }
+  EXPECT_LT(worst, 1e-14);
+  EXPECT_THROW(WignerStepTable(0), InvalidArgument);
 }
 
 TEST(Wigner, Symmetries)

@@ -16,6 +16,12 @@ const std::vector<Method>& allMethods()
        [](auto s, auto t, const auto& m) { return runPhaser(s, t, m, true); }},
       {"phaser_xyz", true,
        [](auto s, auto t, const auto& m) { return runPhaser(s, t, m, false); }},
+      {"phaser_plain", true,
+       [](auto s, auto t, const auto& m) {
+         MethodSettings plain = m;
+         plain.normalized_refinement = false;
+         return runPhaser(s, t, plain, true);
+       }},
       {"sacia", true, runSacIa},
       {"prerejective", true, runPrerejective},
       {"fpcs", true,

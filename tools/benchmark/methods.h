@@ -26,9 +26,10 @@ struct MethodSettings {
   double voxel = 0.5;    ///< leaf of the downsampling for PCL's methods (m)
   bool centroid = false; ///< pcl_phaser: project about the centroids
   int threads = 2;
-  int bandwidth = 64;    ///< pcl_phaser spherical bandwidth
-  unsigned seed = 1;     ///< std::srand seed of PCL's randomised aligners
-  int fpcs_seconds = 10; ///< time limit of FPCS / KFPCS
+  int bandwidth = 64;                ///< pcl_phaser spherical bandwidth
+  unsigned seed = 1;                 ///< std::srand seed of PCL's randomised aligners
+  int fpcs_seconds = 10;             ///< time limit of FPCS / KFPCS
+  bool normalized_refinement = true; ///< pcl_phaser's setNormalizedRefinement
 };
 
 /** \brief One registration's outcome (T maps the source into the target frame). */
@@ -55,7 +56,8 @@ struct Method {
   MethodFunction run;
 };
 
-/** \brief All methods, in table order: phaser, phaser_xyz, sacia, prerejective, fpcs,
+/** \brief All methods, in table order: phaser, phaser_xyz, phaser_plain (fused, plain
+ * rotation refinement), sacia, prerejective, fpcs,
  * kfpcs, icp, gicp, ndt. */
 const std::vector<Method>& allMethods();
 

@@ -22,6 +22,7 @@ MethodResult align(const typename pcl::PointCloud<PointP>::ConstPtr& source,
   pcl::PhaserRegistration<PointP, PointP> phaser;
   phaser.setBandwidth(settings.bandwidth);
   phaser.setNumberOfThreads(settings.threads);
+  phaser.setNormalizedRefinement(settings.normalized_refinement);
   using Center = typename pcl::PhaserRegistration<PointP, PointP>::ProjectionCenter;
   phaser.setProjectionCenter(settings.centroid ? Center::Centroid
                                                : Center::SensorOrigin);

@@ -33,7 +33,7 @@ struct PhaserParameters {
    *  energy-normalised correlation (refineRotation with supports), within
    *  kNormalizedRefinementRadius of the plain maximum. It removes the pull of the
    *  field-of-view edges towards equal sensor tilt (simulated tilted-sensor pairs:
-   *  median 1.13 -> 0.42 deg) for a few ms more per align (doc/benchmarks.md
+   *  median 1.13 -> 0.56 deg) for a few ms more per align (doc/benchmarks.md
    *  section 6). */
   bool normalized_refinement = true;
 };
@@ -42,10 +42,12 @@ struct PhaserParameters {
  *  maximum of plain C. The tilt pull it corrects is about 40 % of the relative tilt of
  *  the two sensors, so about 1 deg for vehicles; unbounded, the normalised objective
  *  can also climb away from a maximum whose viewpoint has not settled, towards a
- *  smaller overlap that matches better (demo seed 4: 1.3 -> 4.9 deg). Measured on
- *  makeDemoPair seeds 1-40: radius 1 deg gives 28 below 1 deg and 38 within 5 deg /
- *  0.6 m, against 14 and 38 for plain C and 28 and 35 unbounded. */
-constexpr double kNormalizedRefinementRadius = M_PI / 180.0;
+ *  smaller overlap that matches better (demo seed 4: 1.3 -> 4.9 deg), and on sparse
+ *  scans it is noisier than plain C. Radius 0.5 / 0.75 / 1 deg: makeDemoPair seeds 1-40
+ *  median RRE 0.73 / 0.56 / 0.42 deg (plain 1.13); the 102 real-scan poses of the NEES
+ *  study RMS RRE 0.32 / 0.36 / 0.38 deg (plain 0.43), inside the 95 % ellipsoid 81 / 80
+ *  / 79 % (plain 90 %, doc/benchmarks.md section 5). */
+constexpr double kNormalizedRefinementRadius = 0.75 * M_PI / 180.0;
 
 /** \brief Empty when \a p is legal, else the reason (for PCL_ERROR). */
 std::string validateParameters(const PhaserParameters& p);

@@ -6,6 +6,7 @@
 
 #include <pcl_phaser/core/so3_grid.h>
 #include <pcl_phaser/core/spherical_harmonics.h>
+#include <pcl_phaser/core/wigner.h>
 
 #include <Eigen/Core>
 
@@ -86,6 +87,7 @@ private:
   int output_bandwidth_;
   std::vector<double> cos_beta_, log_cos_half_, log_sin_half_; // beta_j, j < Bo
   std::vector<double> log_factorials_;
+  WignerStepTable steps_;
   struct Plan;
   std::unique_ptr<Plan> plan_;
 };

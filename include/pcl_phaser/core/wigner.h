@@ -4,6 +4,7 @@
  */
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 namespace pcl_phaser {
@@ -40,6 +41,35 @@ struct WignerStep {
 /** \brief Step from degree l to l+1 for orders (m', m); valid for l >= max(|m'|,|m|).
  */
 WignerStep wignerStep(int l, int mp, int m);
+
+/** \brief The same steps from tables of sqrt(l^2 - m^2) and their inverses, so a step
+ *  costs a few products instead of two square roots and three divisions (the
+ *  recurrences run one step per degree and order pair: ~260k at B = 64). Equal to
+ *  wignerStep up to rounding. */
+class WignerStepTable {
+public:
+  /** \param[in] bandwidth B: steps for l < B, |m|, |m'| < B */
+  explicit WignerStepTable(int bandwidth);
+  WignerStep step(int l, int mp, int m) const
+  {
+    if (l == 0)
+      return {1.0, 0.0, 0.0};
+    const int am = m < 0 ? -m : m, amp = mp < 0 ? -mp : mp;
+    const double inv_r = inv_root_[index(l + 1, am)] * inv_root_[index(l + 1, amp)];
+    const double a = growth_[l] * inv_r;
+    return {a, -a * m * mp * inv_ll1_[l],
+            ratio_[l] * root_[index(l, am)] * root_[index(l, amp)] * inv_r};
+  }
+
+private:
+  std::size_t index(int l, int m) const
+  {
+    return static_cast<std::size_t>(l) * stride_ + static_cast<std::size_t>(m);
+  }
+  std::size_t stride_;
+  std::vector<double> root_, inv_root_; ///< sqrt(l^2 - m^2) and 1 / it, 0 <= m <= l
+  std::vector<double> growth_, ratio_, inv_ll1_; ///< (l+1)(2l+1), (l+1)/l, 1/(l(l+1))
+};
 
 /** \brief d^l_{m'm}(beta) (Wigner/Sakurai convention, |d| <= 1) for l = 0..B-1; entries
  *  with l < max(|m'|,|m|) are zero. beta in [0, pi]. Reference helper for evaluation
