@@ -168,13 +168,14 @@ public:
 
   /** \brief Refine the rotation further on the energy-normalised SO(3) correlation,
    *  within 0.75 deg x 64 / B of the maximum of the plain one, when the clouds are
-   * projected about their sensor origins (default true). Plain correlation leans
-   * towards equal sensor tilt when two scanners are rolled or pitched against each
-   * other (their field-of-view bands overlap best at equal tilt: 1.2-1.4 deg on the
-   * simulated demo pairs); the normalised one removes most of that (0.5-0.6 deg) for
-   * about 3 ms more per align (doc/benchmarks.md section 6). About the centroid (object
-   * scans) there is no such band and the plain refinement is kept. \param[in]
-   * normalized whether to normalise */
+   *  projected about their sensor origins (default true). Plain correlation leans
+   *  towards equal sensor tilt when two scanners are rolled or pitched against each
+   *  other (their field-of-view bands overlap best at equal tilt: 1.2-1.4 deg on the
+   *  simulated demo pairs); the normalised one removes most of that (0.5-0.6 deg left)
+   *  for about 8 ms more per align with 2 threads (doc/benchmarks.md sections 2, 6).
+   *  About the centroid (object scans) there is no such band: the plain refinement is
+   *  kept there.
+   *  \param[in] normalized whether to normalise */
   void setNormalizedRefinement(bool normalized)
   {
     params_.normalized_refinement = normalized;

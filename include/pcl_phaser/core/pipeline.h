@@ -31,17 +31,17 @@ struct PhaserParameters {
   int num_threads = 1; ///< worker threads, 1..64
   /** \brief After the Newton refinement of plain C, refine again on the
    *  energy-normalised correlation (refineRotation with supports), within
-   *  kNormalizedRefinementRadius * 64 / B of the plain maximum. It removes the pull of
-   * the field-of-view edges towards equal sensor tilt (simulated tilted-sensor pairs:
-   *  median 1.13 -> 0.56 deg) for a few ms more per align (doc/benchmarks.md
+   *  kNormalizedRefinementRadius * 64 / B of the plain maximum. It removes most of the
+   *  pull of the field-of-view edges towards equal sensor tilt (simulated tilted-sensor
+   *  pairs: median 1.13 -> 0.56 deg) for a few ms more per align (doc/benchmarks.md
    *  section 6). */
   bool normalized_refinement = true;
 };
 
 /** \brief How far (radians, at B = 64; scaled by 64 / B, like the precision of the
  *  plain maximum) the normalised refinement may move the rotation from the maximum of
- *  plain C. The tilt pull it corrects is about 40 % of the relative tilt of
- *  the two sensors, so about 1 deg for vehicles; unbounded, the normalised objective
+ *  plain C. The tilt pull it corrects is about 40 % of the relative tilt of the two
+ *  sensors, so about 1 deg for vehicles; unbounded, the normalised objective
  *  can also climb away from a maximum whose viewpoint has not settled, towards a
  *  smaller overlap that matches better (demo seed 4: 1.3 -> 4.9 deg), and on sparse
  *  scans it is noisier than plain C. Radius 0.5 / 0.75 / 1 deg: makeDemoPair seeds 1-40
