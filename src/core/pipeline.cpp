@@ -121,7 +121,7 @@ Eigen::Matrix3d refine(const TargetModel& target, const SphericalSpectrum& H,
     refined = refineRotation(target.spherical, H, refined.rotation, p.bandwidth,
                              p.refinement_iterations, p.num_threads,
                              &target.spherical_support, &support,
-                             kNormalizedRefinementRadius * 64.0 / p.bandwidth);
+                             normalizedRefinementRadius(p.bandwidth));
   value = refined.value;
   e.refinement_ms += msSince(t);
   return refined.rotation;

@@ -216,7 +216,7 @@ std::shared_ptr<const So3Correlator> So3Correlator::instance(int bandwidth,
 So3Correlator::So3Correlator(int bandwidth, int output_bandwidth)
     : bandwidth_(bandwidth)
     , output_bandwidth_(output_bandwidth ? output_bandwidth : bandwidth)
-    , steps_(bandwidth)
+    , steps_(wignerStepTable(bandwidth))
     , plan_(std::make_unique<Plan>())
 {
   checkBandwidth(bandwidth_);
@@ -292,7 +292,7 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
         const WignerStart start = wignerStart(mp, m, log_factorials_);
         for (int j = 0; j < J; ++j)
           w.d0[j] = start.value(log_cos_half_[j], log_sin_half_[j]);
-        wignerAccumulate(steps_, L, B, J, mp, m, cb,
+        wignerAccumulate(*steps_, L, B, J, mp, m, cb,
                          reinterpret_cast<const double*>(w.c1.data()),
                          reinterpret_cast<const double*>(w.c2.data()), w.d0.data(),
                          w.d1.data(), w.d2.data(), w.acc1_re.data(), w.acc1_im.data(),
@@ -347,7 +347,7 @@ evaluateCorrelations(const std::vector<SpectrumPair>& pairs,
     ls[k] = std::log(std::sin(0.5 * euler[k].beta));
   }
   const std::vector<double> lf = logFactorials(2 * B + 1);
-  const WignerStepTable steps(B);
+  const std::shared_ptr<const WignerStepTable> steps = wignerStepTable(B);
   // e^{-i m' alpha_k} for every order m' and rotation k, once: inside the loop over
   // (m, m') it would be B times as many sincos.
   std::vector<Complex> turn_table(static_cast<std::size_t>(2 * B - 1) * K);
@@ -376,7 +376,7 @@ evaluateCorrelations(const std::vector<SpectrumPair>& pairs,
             c[static_cast<std::size_t>(q) * B + l] =
                 std::conj(coefficient(*pairs[q].target, l, mp)) *
                 (*pairs[q].source)(l, m);
-        evaluateAccumulate(steps, L, B, K, P, mp, m, cb.data(),
+        evaluateAccumulate(*steps, L, B, K, P, mp, m, cb.data(),
                            reinterpret_cast<const double*>(c.data()), d0.data(),
                            d1.data(), d2.data(), acc_re.data(), acc_im.data());
         const Complex* turn = &turn_table[static_cast<std::size_t>(mp + B - 1) * K];

@@ -2,6 +2,8 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  */
+#include "instance_cache.h"
+
 #include <pcl_phaser/core/error.h>
 #include <pcl_phaser/core/wigner.h>
 
@@ -94,6 +96,14 @@ WignerStepTable::WignerStepTable(int bandwidth)
     ratio_[l] = (l + 1.0) / l;
     inv_ll1_[l] = 1.0 / (static_cast<double>(l) * (l + 1.0));
   }
+}
+
+std::shared_ptr<const WignerStepTable> wignerStepTable(int bandwidth)
+{
+  static detail::InstanceCache<int, WignerStepTable> cache;
+  checkBandwidth(bandwidth);
+  return cache.get(bandwidth,
+                   [&] { return std::make_shared<const WignerStepTable>(bandwidth); });
 }
 
 std::vector<double> wignerSmallD(int mp, int m, int bandwidth, double beta)

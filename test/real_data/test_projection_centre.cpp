@@ -8,6 +8,7 @@
  */
 #include "../registration/test_data.h"
 #include "protocol.h"
+#include "real_data_support.h"
 
 #include <pcl_phaser/cloud_io.h>
 #include <pcl_phaser/core/projection_centre.h>
@@ -32,13 +33,7 @@ using Center = Phaser::ProjectionCenter;
 
 CloudXYZ::Ptr loadFinite(const std::string& relative)
 {
-  auto cloud = pcl::make_shared<CloudXYZ>();
-  std::string error;
-  if (!pcl::phaser::loadCloud(pcl_phaser::test::dataPath(relative), *cloud, &error))
-    ADD_FAILURE() << error;
-  pcl::Indices kept;
-  pcl::removeNaNFromPointCloud(*cloud, *cloud, kept);
-  return cloud;
+  return pcl_phaser::test::loadFiniteCloud<pcl::PointXYZ>(relative);
 }
 
 Eigen::Matrix3Xd matrix(const CloudXYZ& cloud)

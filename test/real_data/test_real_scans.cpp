@@ -10,6 +10,7 @@
  */
 #include "../registration/test_data.h"
 #include "protocol.h"
+#include "real_data_support.h"
 
 #include <pcl_phaser/cloud_io.h>
 #include <pcl_phaser/phaser_registration.h>
@@ -35,13 +36,7 @@ constexpr double kDeg = M_PI / 180.0;
 
 Cloud::Ptr load(const std::string& relative)
 {
-  auto cloud = pcl::make_shared<Cloud>();
-  std::string error;
-  if (!pcl::phaser::loadCloud(pcl_phaser::test::dataPath(relative), *cloud, &error))
-    ADD_FAILURE() << error;
-  pcl::Indices kept;
-  pcl::removeNaNFromPointCloud(*cloud, *cloud, kept);
-  return cloud;
+  return pcl_phaser::test::loadFiniteCloud<PointT>(relative);
 }
 
 using pcl_phaser::bench::randomPose;
@@ -56,6 +51,22 @@ double rte(const Eigen::Matrix4d& A, const Eigen::Matrix4d& B)
   return pcl_phaser::bench::rteM(A, B);
 }
 
+/** \a scan seen from pose \a T (the source is T^-1 \a seen) and registered against
+ *  \a scan by \a phaser with 2 threads; returns the source. */
+Cloud::Ptr alignSeenFrom(const Cloud& seen, const Cloud::Ptr& scan,
+                         const Eigen::Matrix4d& T,
+                         pcl::PhaserRegistration<PointT, PointT>& phaser)
+{
+  auto source = pcl::make_shared<Cloud>();
+  pcl::transformPointCloud(seen, *source, Eigen::Matrix4d(T.inverse()));
+  phaser.setNumberOfThreads(2);
+  phaser.setInputSource(source);
+  phaser.setInputTarget(scan);
+  Cloud aligned;
+  phaser.align(aligned);
+  return source;
+}
+
 /** The 20-pose protocol of the end-to-end issue. */
 void runRandomPoses(const std::string& relative, int poses, unsigned seed)
 {
@@ -66,14 +77,8 @@ void runRandomPoses(const std::string& relative, int poses, unsigned seed)
   int global_ok = 0;
   for (int k = 0; k < poses; ++k) {
     const Eigen::Matrix4d T = randomPose(rng, 2.0);
-    auto source = pcl::make_shared<Cloud>();
-    pcl::transformPointCloud(*scan, *source, Eigen::Matrix4d(T.inverse()));
     pcl::PhaserRegistration<PointT, PointT> phaser;
-    phaser.setNumberOfThreads(2);
-    phaser.setInputSource(source);
-    phaser.setInputTarget(scan);
-    Cloud aligned;
-    phaser.align(aligned);
+    const Cloud::Ptr source = alignSeenFrom(*scan, scan, T, phaser);
     const Eigen::Matrix4d G = phaser.getFinalTransformation().cast<double>();
     const double r = rreDeg(G, T), t = rte(G, T);
     const bool ok = phaser.hasConverged() && r < 2.0 && t < 0.3;
@@ -87,6 +92,7 @@ void runRandomPoses(const std::string& relative, int poses, unsigned seed)
       icp.setMaxCorrespondenceDistance(1.0);
       icp.setMaximumIterations(50);
       icp.setTransformationEpsilon(1e-10);
+      Cloud aligned;
       icp.align(aligned, phaser.getFinalTransformation());
       const Eigen::Matrix4d I = icp.getFinalTransformation().cast<double>();
       std::printf(" | ICP RRE %.4f deg RTE %.4f m", rreDeg(I, T), rte(I, T));
@@ -121,13 +127,7 @@ using CloudXYZ = pcl::PointCloud<pcl::PointXYZ>;
 
 CloudXYZ::Ptr loadXYZ(const std::string& relative)
 {
-  auto cloud = pcl::make_shared<CloudXYZ>();
-  std::string error;
-  if (!pcl::phaser::loadCloud(pcl_phaser::test::dataPath(relative), *cloud, &error))
-    ADD_FAILURE() << error;
-  pcl::Indices kept;
-  pcl::removeNaNFromPointCloud(*cloud, *cloud, kept);
-  return cloud;
+  return pcl_phaser::test::loadFiniteCloud<pcl::PointXYZ>(relative);
 }
 
 Eigen::Matrix4d fromRows(const double (&r)[12])
@@ -331,14 +331,8 @@ TEST(RealScans, CovarianceConsistentOnKitti)
     const Eigen::Matrix4d T = randomPose(rng, 2.0);
     Cloud perturbed = *scan;
     pcl_phaser::bench::applyCondition(noise, perturbed, rng);
-    auto source = pcl::make_shared<Cloud>();
-    pcl::transformPointCloud(perturbed, *source, Eigen::Matrix4d(T.inverse()));
     pcl::PhaserRegistration<PointT, PointT> phaser;
-    phaser.setNumberOfThreads(2);
-    phaser.setInputSource(source);
-    phaser.setInputTarget(scan);
-    Cloud aligned;
-    phaser.align(aligned);
+    alignSeenFrom(perturbed, scan, T, phaser);
     if (!phaser.hasConverged())
       continue;
     ++converged;

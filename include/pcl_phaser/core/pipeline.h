@@ -31,7 +31,7 @@ struct PhaserParameters {
   int num_threads = 1; ///< worker threads, 1..64
   /** \brief After the Newton refinement of plain C, refine again on the
    *  energy-normalised correlation (refineRotation with supports), within
-   *  kNormalizedRefinementRadius * 64 / B of the plain maximum. It removes most of the
+   *  normalizedRefinementRadius(B) of the plain maximum. It removes most of the
    *  pull of the field-of-view edges towards equal sensor tilt (simulated tilted-sensor
    *  pairs: median 1.13 -> 0.56 deg) for a few ms more per align (doc/benchmarks.md
    *  section 6). */
@@ -49,6 +49,14 @@ struct PhaserParameters {
  *  study RMS RRE 0.32 / 0.36 / 0.38 deg (plain 0.43), inside the 95 % ellipsoid 81 / 80
  *  / 79 % (plain 90 %, doc/benchmarks.md section 5). */
 constexpr double kNormalizedRefinementRadius = 0.75 * M_PI / 180.0;
+
+/** \brief The trust radius (radians) at bandwidth B: kNormalizedRefinementRadius * 64 /
+ * B.
+ */
+inline double normalizedRefinementRadius(int bandwidth)
+{
+  return kNormalizedRefinementRadius * 64.0 / bandwidth;
+}
 
 /** \brief Empty when \a p is legal, else the reason (for PCL_ERROR). */
 std::string validateParameters(const PhaserParameters& p);

@@ -87,7 +87,7 @@ private:
   int output_bandwidth_;
   std::vector<double> cos_beta_, log_cos_half_, log_sin_half_; // beta_j, j < Bo
   std::vector<double> log_factorials_;
-  WignerStepTable steps_;
+  std::shared_ptr<const WignerStepTable> steps_;
   struct Plan;
   std::unique_ptr<Plan> plan_;
 };

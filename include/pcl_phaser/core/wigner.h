@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace pcl_phaser {
@@ -70,6 +71,10 @@ private:
   std::vector<double> root_, inv_root_; ///< sqrt(l^2 - m^2) and 1 / it, 0 <= m <= l
   std::vector<double> growth_, ratio_, inv_ll1_; ///< (l+1)(2l+1), (l+1)/l, 1/(l(l+1))
 };
+
+/** \brief The step table of bandwidth B, built once per process and shared read-only.
+ *  \throws InvalidArgument for a bandwidth outside [1, 256] */
+std::shared_ptr<const WignerStepTable> wignerStepTable(int bandwidth);
 
 /** \brief d^l_{m'm}(beta) (Wigner/Sakurai convention, |d| <= 1) for l = 0..B-1; entries
  *  with l < max(|m'|,|m|) are zero. beta in [0, pi]. Reference helper for evaluation

@@ -1,0 +1,39 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ *
+ * Loading the shared scans in the real-data tests.
+ */
+#pragma once
+
+#include "../registration/test_data.h"
+
+#include <pcl_phaser/cloud_io.h>
+
+#include <pcl/filters/filter.h>
+#include <pcl/point_cloud.h>
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace pcl_phaser {
+namespace test {
+
+/** \brief A file of the shared data as PointT, NaN points removed (a test failure, and
+ *  an empty cloud, when it cannot be read).
+ *  \param[in] relative path inside the data directory */
+template <typename PointT>
+typename pcl::PointCloud<PointT>::Ptr loadFiniteCloud(const std::string& relative)
+{
+  auto cloud = pcl::make_shared<pcl::PointCloud<PointT>>();
+  std::string error;
+  if (!pcl::phaser::loadCloud(dataPath(relative), *cloud, &error))
+    ADD_FAILURE() << error;
+  pcl::Indices kept;
+  pcl::removeNaNFromPointCloud(*cloud, *cloud, kept);
+  return cloud;
+}
+
+} // namespace test
+} // namespace pcl_phaser
