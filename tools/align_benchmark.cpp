@@ -13,6 +13,7 @@
  * on the energy-normalised correlation (setNormalizedRefinement(false)). Timings are
  * wall-clock.
  */
+#include "fft_yardstick.h"
 #include "scan_simulator.h"
 
 #include <pcl_phaser/cloud_io.h>
@@ -115,25 +116,29 @@ int main(int argc, char** argv)
   std::string name;
   if (!loadPair(argc, argv, source, target, name))
     return 2;
+  const double unit = pcl_phaser::bench::fftYardstickMs();
   std::printf(
       "pair: %s (%zu -> %zu points), bandwidth %d, channels: %s, %s refinement, "
-      "median of %d\n\n",
+      "median of %d; yardstick: one 128^3 r2c FFT (1 thread) = %.2f ms\n\n",
       name.c_str(), source->size(), target->size(), bandwidth,
       range_only ? "range" : "range + intensity", normalized ? "normalised" : "plain",
-      reps);
+      reps, unit);
   std::printf(
-      "| threads | target | total ms | target prep | sampling | SHT | SO(3) corr "
-      "| refinement | translation | passes |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+      "| threads | target | total ms | total FFT units | target prep | sampling | SHT "
+      "| SO(3) corr | refinement | translation | orientation | verification | passes "
+      "|\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (int threads : {1, 2})
     for (bool cached : {false, true}) {
       const Row r = measure(source, target, threads, cached, reps, bandwidth,
                             range_only, normalized);
       const pcl_phaser::PhaserEstimate& e = r.estimate;
-      std::printf("| %d | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %d |\n",
-                  threads, cached ? "cached" : "fresh", r.total, e.target_ms,
-                  e.sampling_ms, e.sht_ms, e.so3_ms, e.refinement_ms, e.translation_ms,
-                  e.passes);
+      std::printf(
+          "| %d | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f "
+          "| %.1f | %d |\n",
+          threads, cached ? "cached" : "fresh", r.total, r.total / unit, e.target_ms,
+          e.sampling_ms, e.sht_ms, e.so3_ms, e.refinement_ms, e.translation_ms,
+          e.orientation_ms, e.verification_ms, e.passes);
       std::fflush(stdout);
     }
   return 0;

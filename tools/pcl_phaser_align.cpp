@@ -242,11 +242,16 @@ void printReport(const Result& res)
   const pcl_phaser::PhaserEstimate& e = res.estimate;
   printStage("PHASER", res.global);
   print_info("    rotation score %.4f, translation score %.4f, passes %d\n"
+             "    verification: inliers %.3f, free-space violations %.3f, constraint "
+             "%.3f (%d samples): %s\n"
              "    stages (ms): target %.1f, sampling %.1f, sht %.1f, so3 %.1f, "
-             "refinement %.1f, translation %.1f; total %.1f\n",
-             e.rotation_score, e.translation_score, e.passes, e.target_ms,
-             e.sampling_ms, e.sht_ms, e.so3_ms, e.refinement_ms, e.translation_ms,
-             res.global.time_ms);
+             "refinement %.1f, translation %.1f, orientation %.1f, verification %.1f; "
+             "total %.1f\n",
+             e.rotation_score, e.translation_score, e.passes, e.inlier_fraction,
+             e.free_space_violation, e.constraint, e.verification_samples,
+             e.verified ? "verified" : "NOT verified", e.target_ms, e.sampling_ms,
+             e.sht_ms, e.so3_ms, e.refinement_ms, e.translation_ms, e.orientation_ms,
+             e.verification_ms, res.global.time_ms);
   if (res.icp.ran)
     printStage("After ICP", res.icp);
 }
@@ -263,9 +268,15 @@ std::string toJson(const Result& res, const Options& opt, int code, double total
         .add("sht", json::number(e.sht_ms))
         .add("so3", json::number(e.so3_ms))
         .add("refinement", json::number(e.refinement_ms))
-        .add("translation", json::number(e.translation_ms));
+        .add("translation", json::number(e.translation_ms))
+        .add("orientation", json::number(e.orientation_ms))
+        .add("verification", json::number(e.verification_ms));
     o.add("rotation_score", json::number(e.rotation_score))
         .add("translation_score", json::number(e.translation_score))
+        .add("inlier_fraction", json::number(e.inlier_fraction))
+        .add("free_space_violation", json::number(e.free_space_violation))
+        .add("constraint", json::number(e.constraint))
+        .add("verified", json::boolean(e.verified))
         .add("passes", std::to_string(e.passes))
         .add("stages_ms", stages.str())
         .add("source_points", std::to_string(res.source_points))

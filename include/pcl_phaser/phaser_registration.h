@@ -24,9 +24,15 @@ namespace pcl {
  *
  *  \details The rotation comes from correlating the spherical-harmonic spectra of the
  * two clouds, projected on the sphere about a centre, on SO(3) (Kostelec-Rockmore),
- * refined by Newton steps with exact evaluation; the translation from a 3-D FFT
- * correlation of the voxelised target and rotated source, with a sub-voxel peak. No
- * normals, features or correspondences are needed, so it replaces
+ * beside the correlation of their surface-orientation histograms, refined by Newton
+ * steps with exact evaluation; the translation from a whitened 3-D FFT correlation of
+ * the voxelised target and rotated source, with a sub-voxel peak. Every hypothesis is
+ * verified geometrically and the best one wins. About sensor origins hasConverged()
+ * means the final pose verified (pcl_phaser::PhaserEstimate::verified: enough source
+ * samples on the target with agreeing normals, few in space the target saw through,
+ * and a match that pins the translation down in every direction); about centroids it
+ * also needs a distinct correlation peak (setMinimumPeakScore()). No normals, features
+ * or correspondences are needed as input, so it replaces
  * pcl::SampleConsensusInitialAlignment as the global initialiser ahead of
  * pcl::IterativeClosestPoint:
  *  \code
@@ -105,6 +111,18 @@ public:
 
   /** \brief Provide the target cloud; invalidates the cached target spectra. */
   void setInputTarget(const PointCloudTargetConstPtr& cloud) override;
+
+  /** \brief Set all engine parameters at once (see pcl_phaser::PhaserParameters for
+   *  each field's meaning, range and default); they are validated at align().
+   *  Invalidates the cached target. \param[in] params the parameters */
+  void setParameters(const pcl_phaser::PhaserParameters& params)
+  {
+    params_ = params;
+    invalidateTarget();
+  }
+
+  /** \brief The engine parameters in use. */
+  const pcl_phaser::PhaserParameters& getParameters() const { return params_; }
 
   /** \brief Set the spherical bandwidth B (1..256): the sphere is sampled on a 2B x 2B
    * grid and the SO(3) grid spacing is pi/B (before refinement). Default 64. \param[in]
@@ -248,7 +266,8 @@ public:
   ProjectionCenter getUsedProjectionCenter() const { return used_center_; }
 
   /** \brief Set the translation peak score (peak-to-sidelobe ratio of the Laplacian
-   *  of the final 3-D correlation) above which hasConverged() is true. Default 20:
+   *  of the final 3-D correlation) above which hasConverged() is true about centroids
+   *  (about sensor origins the verification decides alone). Default 20:
    *  identical scans score 56-132 and registrations of unrelated scenes at most 19.
    *  Half of it suffices when the aligned clouds also overlap well
    *  (getNormalizedOverlap() >= getMinimumNormalizedOverlap()); see doc/benchmarks.md

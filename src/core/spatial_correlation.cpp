@@ -273,11 +273,12 @@ SpatialSpectrum computeSpectrum(const SpatialVolume& volume, int num_threads)
 
 namespace {
 
-/** C = F conj(G) / N written into \a out (which may alias \a source), then the c2r
- *  (unnormalised; 1/N makes the output the plain sum). */
+/** C = F conj(G) / N written into \a out (which may alias \a source), divided by
+ *  |F conj(G)|^whitening, then the c2r (unnormalised; 1/N makes the output the plain
+ *  sum when whitening is 0). */
 SpatialVolume correlateInto(const SpatialSpectrum& target,
                             const SpatialSpectrum& source, SpatialComplexArray& out,
-                            int num_threads)
+                            int num_threads, double whitening = 0.0)
 {
   const int threads = resolveThreads(num_threads);
   checkGrid(target.grid, "correlateSpectra (target)");
@@ -298,8 +299,16 @@ SpatialVolume correlateInto(const SpatialSpectrum& target,
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::ptrdiff_t i = 0; i < count; ++i) {
     const std::complex<double> f = target.coefficients[i], g = source.coefficients[i];
-    out[i] = {(f.real() * g.real() + f.imag() * g.imag()) * scale,
-              (f.imag() * g.real() - f.real() * g.imag()) * scale};
+    std::complex<double> c{f.real() * g.real() + f.imag() * g.imag(),
+                           f.imag() * g.real() - f.real() * g.imag()};
+    if (whitening > 0.0) {
+      const double a = std::abs(c);
+      const double d = whitening == 0.5 ? std::sqrt(a)
+                       : whitening == 1.0 ? a
+                                          : std::pow(a, whitening);
+      c = a > 0.0 ? c / d : std::complex<double>{};
+    }
+    out[i] = c * scale;
   }
 
   SpatialVolume correlation;
@@ -325,6 +334,16 @@ SpatialVolume correlateSpectra(const SpatialSpectrum& target, SpatialSpectrum&& 
 {
   SpatialSpectrum consumed = std::move(source);
   return correlateInto(target, consumed, consumed.coefficients, num_threads);
+}
+
+SpatialVolume correlateSpectraWhitened(const SpatialSpectrum& target,
+                                       SpatialSpectrum&& source, double exponent,
+                                       int num_threads)
+{
+  if (!(exponent >= 0.0 && exponent <= 1.0))
+    throw InvalidArgument("correlateSpectraWhitened: exponent must be in [0, 1]");
+  SpatialSpectrum consumed = std::move(source);
+  return correlateInto(target, consumed, consumed.coefficients, num_threads, exponent);
 }
 
 SpatialCorrelationResult correlateSpatial(const SpatialSpectrum& target,

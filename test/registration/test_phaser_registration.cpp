@@ -151,7 +151,7 @@ TEST(PhaserRegistration, RecoversKnownPoseSensorOrigin)
     }
 }
 
-TEST(PhaserRegistration, ConvergenceNeedsAPeakScoreOrHalfOfItAndAClearOverlap)
+TEST(PhaserRegistration, ConvergenceMeansAVerifiedPose)
 {
   const auto target = makeScene<pcl::PointXYZ>();
   const auto source = seenFrom(*target, makePose({0, 0, 1}, 2.3, {1.2, -0.7, 0.1}));
@@ -160,28 +160,64 @@ TEST(PhaserRegistration, ConvergenceNeedsAPeakScoreOrHalfOfItAndAClearOverlap)
   phaser.setInputTarget(target);
   CloudXYZ out;
   phaser.align(out);
-  const double score = phaser.getTranslationScore();
-  const double overlap = phaser.getNormalizedOverlap();
   ASSERT_TRUE(phaser.hasConverged());
-  EXPECT_GT(overlap, 0.7); // the same room: the aligned grids nearly coincide
-  EXPECT_LE(overlap, 1.0);
-  const auto convergesWith = [&](double min_score, double min_overlap) {
-    phaser.setMinimumPeakScore(min_score);
-    phaser.setMinimumNormalizedOverlap(min_overlap);
+  const pcl_phaser::PhaserEstimate e = phaser.getEstimate();
+  EXPECT_TRUE(e.verified);
+  EXPECT_GT(e.inlier_fraction, 0.5); // the same room seen again
+  EXPECT_GT(e.constraint, 0.05);     // floor and walls of two directions
+  EXPECT_LE(e.free_space_violation, 0.02);
+  // Each threshold flips the decision where the pose's own figure lies.
+  const auto convergesWith = [&](auto set) {
+    pcl_phaser::PhaserParameters p = phaser.getParameters();
+    set(p);
+    phaser.setParameters(p);
     phaser.align(out);
     return phaser.hasConverged();
   };
-  EXPECT_TRUE(convergesWith(score, 1.0));           // the score alone
-  EXPECT_FALSE(convergesWith(1.01 * score, 1.0));   // neither
-  EXPECT_TRUE(convergesWith(1.9 * score, overlap)); // half the score and the overlap
-  EXPECT_FALSE(convergesWith(1.9 * score, std::min(1.0, overlap + 1e-3)));
-  EXPECT_FALSE(convergesWith(2.1 * score, 0.0)); // not even half the score
-  // An unrelated room overlaps little.
+  const pcl_phaser::PhaserParameters defaults = phaser.getParameters();
+  EXPECT_TRUE(
+      convergesWith([&](auto& p) { p.min_inlier_fraction = e.inlier_fraction; }));
+  EXPECT_FALSE(convergesWith(
+      [&](auto& p) { p.min_inlier_fraction = e.inlier_fraction + 1e-3; }));
+  phaser.setParameters(defaults);
+  EXPECT_TRUE(convergesWith([&](auto& p) { p.min_constraint = e.constraint; }));
+  EXPECT_FALSE(convergesWith([&](auto& p) { p.min_constraint = e.constraint + 1e-3; }));
+  phaser.setParameters(defaults);
+  EXPECT_TRUE(convergesWith(
+      [&](auto& p) { p.max_free_space_violation = e.free_space_violation; }));
+  if (e.free_space_violation > 0.0)
+    EXPECT_FALSE(convergesWith(
+        [&](auto& p) { p.max_free_space_violation = 0.99 * e.free_space_violation; }));
+  // An unrelated room does not verify.
   pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> unrelated;
   unrelated.setInputSource(makeScene<pcl::PointXYZ>(6, 300));
   unrelated.setInputTarget(target);
   unrelated.align(out);
-  EXPECT_LT(unrelated.getNormalizedOverlap(), 0.5 * overlap);
+  EXPECT_FALSE(unrelated.hasConverged());
+}
+
+TEST(PhaserRegistration, DegenerateInputsDoNotConverge)
+{
+  const auto target = makeScene<pcl::PointXYZ>();
+  const auto cloudOf = [](std::initializer_list<Eigen::Vector3f> points) {
+    auto c = pcl::make_shared<CloudXYZ>();
+    for (const Eigen::Vector3f& p : points)
+      c->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+    return c;
+  };
+  const auto two = cloudOf({{1, 0, 0}, {0, 2, 0}});
+  const auto collinear = cloudOf({{1, 0, 0}, {2, 0, 0}, {3, 0, 0}});
+  const auto three = cloudOf({{1, 0, 0}, {0, 2, 0}, {0, 0, 3}});
+  const std::vector<std::pair<CloudXYZ::Ptr, CloudXYZ::Ptr>> cases = {
+      {two, target}, {collinear, target}, {target, three}, {three, three}};
+  for (const auto& [src, tgt] : cases) {
+    pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+    phaser.setInputSource(src);
+    phaser.setInputTarget(tgt);
+    CloudXYZ out;
+    phaser.align(out);
+    EXPECT_FALSE(phaser.hasConverged()) << src->size() << " -> " << tgt->size();
+  }
 }
 
 TEST(PhaserRegistration, CentroidModeHandlesLargeOffsets)
@@ -594,4 +630,37 @@ TEST(PhaserRegistrationBadInput, FitnessScoreWithNaNSourceDoesNotAbort)
   phaser.align(out);
   EXPECT_TRUE(phaser.hasConverged());
   EXPECT_LT(phaser.getFitnessScore(), 0.05);
+}
+
+TEST(PhaserRegistration, NullOrEmptyInputsAreRefusedAndDropThePreviousOnes)
+{
+  const auto target = makeScene<pcl::PointXYZ>();
+  const auto source = seenFrom(*target, makePose({0, 0, 1}, 0.4, {0.3, -0.2, 0.0}));
+  const auto empty = pcl::make_shared<CloudXYZ>();
+  for (int which = 0; which < 4; ++which) {
+    pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+    phaser.setInputSource(source);
+    phaser.setInputTarget(target);
+    CloudXYZ out;
+    phaser.align(out);
+    ASSERT_TRUE(phaser.hasConverged());
+    if (which == 0)
+      phaser.setInputSource(nullptr);
+    else if (which == 1)
+      phaser.setInputTarget(nullptr);
+    else if (which == 2)
+      phaser.setInputSource(empty);
+    else
+      phaser.setInputTarget(empty);
+    EXPECT_FALSE(phaser.hasConverged()) << which;
+    phaser.align(out); // refused by pcl::Registration::initCompute: no crash
+    EXPECT_FALSE(phaser.hasConverged()) << which;
+    // The previous clouds are gone: giving the missing one back registers again.
+    if (which % 2 == 0)
+      phaser.setInputSource(source);
+    else
+      phaser.setInputTarget(target);
+    phaser.align(out);
+    EXPECT_TRUE(phaser.hasConverged()) << which;
+  }
 }

@@ -7,12 +7,15 @@
  */
 #include "../registration/test_data.h"
 #include "protocol.h"
+#include "revisits.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <numeric>
 #include <sstream>
 #include <string>
 
@@ -120,6 +123,107 @@ TEST(EvaluationProtocol, QuantilesInterpolate)
   EXPECT_TRUE(std::isnan(median({})));
 }
 
+TEST(DerivedPairs, ShuffleIsAFixedPermutationPerSeed)
+{
+  std::mt19937 rng(1);
+  for (std::uint32_t n : {1u, 2u, 3u, 7u, 1000u})
+    for (int k = 0; k < 100; ++k)
+      EXPECT_LT(uniformBelow(rng, n), n);
+  auto shuffled = [](unsigned seed) {
+    std::vector<int> items(10);
+    std::iota(items.begin(), items.end(), 0);
+    std::mt19937 r(seed);
+    fisherYates(items, r);
+    return items;
+  };
+  std::vector<int> sorted = shuffled(1);
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(sorted, std::vector<int>({0, 1, 2, 3, 4, 5, 6, 7, 8, 9}));
+  EXPECT_EQ(shuffled(1), shuffled(1));
+  EXPECT_NE(shuffled(1), shuffled(2));
+  // Pinned: mt19937 is fully specified, so is this on every standard library.
+  EXPECT_EQ(shuffled(1), std::vector<int>({2, 9, 6, 4, 0, 3, 1, 7, 8, 5}));
+}
+
+/** Scans 0, 6, ..., 174, 1.01 m apart along x (no distance on a bin edge), each yawed
+ * by its index in degrees. */
+std::vector<ScanPose> lineOfPoses()
+{
+  std::vector<ScanPose> poses(30);
+  for (int k = 0; k < 30; ++k) {
+    poses[k].index = 6 * k;
+    poses[k].world_lidar.topLeftCorner<3, 3>() =
+        Eigen::AngleAxisd(6.0 * k * M_PI / 180.0, Eigen::Vector3d::UnitZ())
+            .toRotationMatrix();
+    poses[k].world_lidar(0, 3) = 1.01 * k;
+  }
+  return poses;
+}
+
+TEST(DerivedPairs, FollowTheGapDistanceAndExclusionRules)
+{
+  const std::vector<ScanPose> poses = lineOfPoses();
+  std::vector<RevisitPair> listed(1);
+  listed[0].source = "/elsewhere/full0.pcd"; // compared by file name
+  listed[0].target = "full36.pcd";
+  DerivedCounts counts;
+  const std::vector<RevisitPair> pairs = derivePairs(poses, listed, 3, 1, &counts);
+  // 2 * (30 - d) ordered candidates d = 3..20 steps apart (1.01 d m), less 0 <-> 36
+  EXPECT_EQ(counts.candidates,
+            (std::array<int, 4>{2 * (27 + 26), 2 * (25 + 24 + 23 + 22 + 21) - 2,
+                                2 * (20 + 19 + 18 + 17 + 16),
+                                2 * (15 + 14 + 13 + 12 + 11 + 10)}));
+  EXPECT_EQ(counts.chosen, (std::array<int, 4>{3, 3, 3, 3}));
+  ASSERT_EQ(pairs.size(), 12u);
+  std::set<std::pair<std::string, std::string>> seen;
+  for (const RevisitPair& p : pairs) {
+    const int i = std::stoi(p.source.substr(4)), j = std::stoi(p.target.substr(4));
+    EXPECT_GE(std::abs(i - j), 18) << p.source << " " << p.target;
+    EXPECT_NEAR(p.dist, 1.01 * std::abs(i - j) / 6.0, 1e-9);
+    EXPECT_NEAR(p.rel_rot, std::abs(i - j), 1e-9);
+    EXPECT_TRUE(std::isnan(p.overlap));
+    const Eigen::Matrix4d truth =
+        poses[j / 6].world_lidar.inverse() * poses[i / 6].world_lidar;
+    EXPECT_TRUE(p.truth.isApprox(truth, 1e-12));
+    EXPECT_FALSE(std::min(i, j) == 0 && std::max(i, j) == 36);
+    EXPECT_TRUE(seen.insert({p.target, p.source}).second); // no pair twice either way
+    EXPECT_FALSE(seen.count({p.source, p.target}));
+  }
+  EXPECT_EQ(derivePairs(poses, listed, 3, 1)[5].source, pairs[5].source);
+  EXPECT_EQ(derivePairs(poses, listed, 1000, 1).size(),
+            counts.candidates[0] / 2u + counts.candidates[1] / 2u +
+                counts.candidates[2] / 2u + counts.candidates[3] / 2u);
+}
+
+TEST(DerivedPairs, ReproduceTheReferencePosesOfPairsTxt)
+{
+  PCL_PHASER_REQUIRE_DATA("lidar/balm_handheld/poses_T_world_lidar.txt");
+  PCL_PHASER_REQUIRE_DATA("lidar/balm_handheld/pairs.txt");
+  const std::string folder = pcl_phaser::test::dataPath("lidar/balm_handheld");
+  std::vector<ScanPose> poses;
+  std::vector<RevisitPair> listed;
+  std::string error;
+  ASSERT_TRUE(readScanPoses(folder + "/poses_T_world_lidar.txt", poses, error))
+      << error;
+  ASSERT_TRUE(readPairs(folder + "/pairs.txt", listed, error)) << error;
+  const std::vector<RevisitPair> all = derivePairs(poses, {}, 100000, 1);
+  int compared = 0;
+  for (const RevisitPair& l : listed)
+    for (const RevisitPair& d : all)
+      if ((d.source == l.source && d.target == l.target) ||
+          (d.source == l.target && d.target == l.source)) {
+        const Eigen::Matrix4d truth =
+            d.source == l.source ? d.truth : d.truth.inverse();
+        EXPECT_LT((truth - l.truth).cwiseAbs().maxCoeff(), 1e-4) << l.source;
+        EXPECT_NEAR(d.dist, l.dist, 0.006) << l.source;
+        ++compared;
+      }
+  EXPECT_GT(compared, 0);
+  for (const RevisitPair& d : derivePairs(poses, listed, 100000, 1))
+    for (const RevisitPair& l : listed)
+      EXPECT_FALSE(d.source == l.source && d.target == l.target) << d.source;
+}
+
 std::string run(const std::string& arguments, int& status)
 {
   const std::string command = std::string(PCL_PHASER_BENCHMARK_BIN) + " " + arguments;
@@ -165,6 +269,43 @@ TEST(PclPhaserBenchmark, ComparesPhaserWithSacIaOnARealScan)
   while (std::getline(in, line))
     ++rows;
   EXPECT_EQ(rows, 6); // 2 poses x 3 methods
+}
+
+TEST(PclPhaserBenchmark, RevisitStudyTabulatesMethodsByDistance)
+{
+  int status = 0;
+  const std::string skipped = run("-study revisits -data /nonexistent 2>&1", status);
+  EXPECT_EQ(status, 0) << skipped; // absent data: a message, not a failure
+  EXPECT_NE(skipped.find("not found, skipping"), std::string::npos) << skipped;
+  run("-study revisits -methods nope 2>&1", status);
+  EXPECT_NE(status, 0);
+  PCL_PHASER_REQUIRE_DATA("lidar/balm_handheld/pairs.txt");
+  const std::string md = run("-data " + pcl_phaser::test::dataDir() +
+                                 " -study revisits -methods phaser_xyz -max-pairs 2 "
+                                 "2>/dev/null",
+                             status);
+  ASSERT_EQ(status, 0) << md;
+  EXPECT_NE(md.find("| method | distance | n | success @2 m | success @0.6 m |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("Yardstick: one 128^3 real-to-complex FFT"), std::string::npos);
+  for (const char* bin :
+       {"[0, 5) m", "[5, 10) m", "[10, 15) m", "[15, inf) m", "<10 m", ">=10 m", "all"})
+    EXPECT_NE(md.find(std::string("| phaser_xyz | ") + bin + " | "), std::string::npos)
+        << bin << "\n"
+        << md;
+  EXPECT_NE(md.find("| phaser_xyz | all | 2 | "), std::string::npos) << md;
+  run("-study revisits -derived-pairs -1 2>&1", status);
+  EXPECT_NE(status, 0);
+  const std::string derived = run("-data " + pcl_phaser::test::dataDir() +
+                                      " -study revisits -derived-pairs 1 -max-pairs 1 "
+                                      "-methods phaser_xyz 2>/dev/null",
+                                  status);
+  ASSERT_EQ(status, 0) << derived;
+  EXPECT_NE(derived.find("pairs derived from"), std::string::npos) << derived;
+  EXPECT_NE(derived.find("| method | distance | n | success @2 m |"), std::string::npos)
+      << derived;
+  EXPECT_NE(derived.find("| phaser_xyz | all | 1 | "), std::string::npos) << derived;
 }
 
 } // namespace

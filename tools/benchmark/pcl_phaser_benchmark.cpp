@@ -3,17 +3,16 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  *
  * pcl_phaser_benchmark: pcl_phaser against PCL's aligners on the same pairs, in one
- * process: real scans from ../shared/data under random large poses (exact truth) with
- * the paper's noise / sparsity / overlap sweeps, and the real pairs with reference
- * poses. Three studies: compare    success rate, median RRE/RTE, median and p90 time
- * per method and condition nees       consistency of getCovariance() (NEES) per
- * bandwidth, at PSNR 50 dB detection  precision and recall of hasConverged() on correct
- * and wrong registrations Writes a markdown summary (stdout or -md), a CSV (-csv) and
- * PNG plots (-plots DIR).
+ * process. Studies: compare (real scans of ../shared/data under random large poses with
+ * exact truth, the paper's noise / sparsity / overlap sweeps, and -pairs: real pairs
+ * with reference poses), nees (getCovariance() per bandwidth), detection
+ * (hasConverged() on correct and wrong registrations) and revisits (revisits.h). Writes
+ * a markdown summary (stdout or -md), a CSV (-csv) and PNG plots (-plots DIR).
  */
 #include "methods.h"
 #include "protocol.h"
 #include "report.h"
+#include "revisits.h"
 
 #include <pcl_phaser/cloud_io.h>
 
@@ -120,7 +119,8 @@ void printHelp(const char* program)
 {
   console::print_info(
       "Usage: %s [options]\n"
-      "  -study S       compare | nees | detection (default compare)\n"
+      "  -study S       compare | nees | detection | revisits (default compare;\n"
+      "                 revisits has its own options: -study revisits -h)\n"
       "  -data DIR      the shared data directory (default %s)\n"
       "  -scans A,B     scans under random poses: hdl32,kitti,kitti_synthetic\n"
       "  -poses N       random poses per scan and condition (default 10)\n"
@@ -431,6 +431,8 @@ void detection(const Options& o, const std::map<std::string, Cloud::Ptr>& scans,
 
 int main(int argc, char** argv)
 {
+  if (isRevisitsStudy(argc, argv))
+    return runRevisitsStudy(argc, argv);
   if (console::find_switch(argc, argv, "-h") ||
       console::find_switch(argc, argv, "--help")) {
     printHelp(argv[0]);

@@ -36,7 +36,39 @@ struct PhaserParameters {
    *  pairs: median 1.13 -> 0.56 deg) for a few ms more per align (doc/benchmarks.md
    *  section 6). */
   bool normalized_refinement = true;
+  /** \brief Rotation hypotheses from the surface-orientation histograms
+   *  (orientationSpectrum), tried beside the range peaks, 0..10 (0: none). The
+   *  histogram does not move with the sensor, so it finds the rotation of scans taken
+   *  metres apart, where the range function's parallax misleads. */
+  int orientation_candidates = 6;
+  /** \brief Bandwidth of the orientation histograms, 8..128. */
+  int orientation_bandwidth = 32;
+  /** \brief Exponent of the cross-power whitening of the global translation search
+   *  (correlateSpectraWhitened), in [0, 1]. Later passes search a residual on the
+   *  fine grid without it: there the pull of the overlap hill towards zero residual
+   *  is a pull towards the current estimate. */
+  double whitening = 0.5;
+  /** \brief Clouds are seen from their sensor origins (the projection centre). Then
+   *  hypotheses are ranked by verifyPose, including the samples in space the target saw
+   *  through, and the orientation histograms add hypotheses. Otherwise (object scans
+   *  about their centroids) hypotheses are ranked by their occupancy correlation peak
+   *  and only the range peaks are tried. */
+  bool sensor_centred = true;
+  /** \brief A pose is verified when at least this (weighted) share of the source
+   *  samples has a target point within the verification radius whose normal agrees,
+   *  in [0, 1] (doc/benchmarks.md section 9 has the measured distributions). */
+  double min_inlier_fraction = 0.2;
+  /** \brief ... and, with sensor_centred, at most this share of them lies in space
+   *  the target saw through, in [0, 1]. */
+  double max_free_space_violation = 0.02;
+  /** \brief ... and its matched samples pin the translation down in every direction:
+   *  PoseVerification::constraint at least this, in [0, 1/3]. */
+  double min_constraint = 0.04;
 };
+
+/** \brief Fewest verification samples (occupied cells of the verification radius) a
+ *  source needs for its pose to be verified: fewer cannot tell a pose from another. */
+constexpr int kMinVerificationSamples = 20;
 
 /** \brief How far (radians, at B = 64; scaled by 64 / B, like the precision of the
  *  plain maximum) the normalised refinement may move the rotation from the maximum of
@@ -66,8 +98,12 @@ std::string validateParameters(const PhaserParameters& p);
 struct RotationHypothesis {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity(); ///< grid rotation
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();  ///< its translation
-  double rotation_score = 0.0; ///< normalised C at the grid peak
-  double overlap = 0.0;        ///< peak of the 3-D correlation: how well it overlaps
+  double rotation_score = 0.0;   ///< normalised C at the grid peak
+  double overlap = 0.0;          ///< peak of the 3-D correlation: how well it overlaps
+  bool from_orientation = false; ///< a peak of the orientation histograms, not of range
+  double inlier_fraction = 0.0;  ///< PoseVerification::inlier_fraction of the pose
+  double verification_score = 0.0;   ///< PoseVerification::score of the pose
+  double free_space_violation = 0.0; ///< PoseVerification::free_space_violation
 };
 
 /** \brief What one registration found, in centred coordinates: for source points q_s
@@ -88,7 +124,24 @@ struct PhaserEstimate {
   double target_ms = 0.0;      ///< target preparation (0 when it came from the cache)
   int passes = 0;              ///< passes run
   std::vector<RotationHypothesis> hypotheses; ///< pass-1 candidates, in peak order
-  int chosen_hypothesis = 0;                  ///< the one with the largest overlap
+  int chosen_hypothesis = 0; ///< the one with the best verification score
+  /** \brief Verification of the final pose (verifyPose): source samples on a grid of
+   *  verification_radius against the target points within that radius. */
+  double inlier_fraction = 0.0;
+  double verification_score = 0.0;
+  double free_space_violation = 0.0;
+  double constraint = 0.0;          ///< PoseVerification::constraint of the final pose
+  double verification_radius = 0.0; ///< metres: half the coarse voxel
+  int verification_samples = 0;     ///< source samples verified
+  /** \brief The final pose passed verification: enough samples and, with
+   *  sensor_centred, inlier_fraction >= min_inlier_fraction, constraint >=
+   *  min_constraint and free_space_violation <= max_free_space_violation. About
+   *  centroids (object scans, keypoints) the radius of half a coarse voxel is below the
+   *  sampling of many clouds, so only the sample count is required there and the
+   *  adapter also asks for a distinct correlation peak. */
+  bool verified = false;
+  double verification_ms = 0.0; ///< source samples and pose verification
+  double orientation_ms = 0.0;  ///< surface patches, histogram and its correlation
   /** \brief Grid rotations around the last rotation peak, moved onto the estimate
    *  (quaternions w, x, y, z), and their weights (correlation above the block's
    * lowest). */

@@ -288,6 +288,17 @@ SpatialVolume correlateSpectra(const SpatialSpectrum& target,
 SpatialVolume correlateSpectra(const SpatialSpectrum& target, SpatialSpectrum&& source,
                                int num_threads = 1);
 
+/** \brief The correlation with a partly whitened cross-power spectrum: each
+ *  coefficient of F conj(G) divided by its magnitude to the power \a exponent (0: plain
+ *  correlation, 1: phase correlation), consuming \a source. Whitening flattens the
+ *  broad overlap hill of two finite occupancy grids (which favours the shift that
+ *  stacks their centres, i.e. the two sensors) and keeps the sharp peak of the
+ *  structures they share.
+ *  \throws InvalidArgument as correlateSpectra, or if exponent is outside [0, 1]. */
+SpatialVolume correlateSpectraWhitened(const SpatialSpectrum& target,
+                                       SpatialSpectrum&& source, double exponent,
+                                       int num_threads = 1);
+
 /** \brief Sub-voxel peak interpolation, per axis through the peak and its 2 neighbours
  *  (wrapping around). Measured on random 40 x 30 x 8 m clouds (worst axis error over
  *  the test shifts): none 0.5 voxel, parabola 0.10, Gaussian 0.05-0.095; a 3x3x3

@@ -94,7 +94,16 @@ template <typename PointSource, typename PointTarget, typename Scalar>
 void PhaserRegistration<PointSource, PointTarget, Scalar>::setInputSource(
     const PointCloudSourceConstPtr& cloud)
 {
-  if (cloud && !cloud->is_dense)
+  converged_ = false;
+  if (!cloud || cloud->empty()) {
+    // pcl::Registration would keep the previous cloud (or dereference null): refuse,
+    // and drop the previous one so that the next align cannot silently reuse it.
+    PCL_ERROR("[pcl::%s::setInputSource] The source cloud is null or empty.\n",
+              getClassName().c_str());
+    input_.reset();
+    return;
+  }
+  if (!cloud->is_dense)
     PCL_WARN(
         "[pcl::%s::setInputSource] The source cloud is not dense; non-finite points "
         "are skipped.\n",
@@ -107,7 +116,14 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::setInputTarget(
     const PointCloudTargetConstPtr& cloud)
 {
   invalidateTarget();
-  if (cloud && !cloud->is_dense)
+  converged_ = false;
+  if (!cloud || cloud->empty()) {
+    PCL_ERROR("[pcl::%s::setInputTarget] The target cloud is null or empty.\n",
+              getClassName().c_str());
+    target_.reset();
+    return;
+  }
+  if (!cloud->is_dense)
     PCL_WARN(
         "[pcl::%s::setInputTarget] The target cloud is not dense; non-finite points "
         "are skipped.\n",
@@ -201,6 +217,7 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
     pcl_phaser::PhaserParameters params = params_;
     params.normalized_refinement =
         params_.normalized_refinement && used_center_ == ProjectionCenter::SensorOrigin;
+    params.sensor_centred = used_center_ == ProjectionCenter::SensorOrigin;
     // The target model: prepared once per target, parameter set and centre, relative
     // to the target's centre.
     if (!target_model_ || model_center_ != used_center_) {
@@ -249,18 +266,21 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
     candidate.chosen = static_cast<int>(k) == estimate_.chosen_hypothesis;
     candidates_.push_back(candidate);
   }
-  // A distinct translation peak is the evidence that the rotated source really overlaps
-  // the target; unrelated scenes give flat correlations. Scans taken metres apart give
-  // wider peaks, so a clear overlap of the aligned grids lets half the score suffice.
-  converged_ = estimate_.translation_score >= min_peak_score_ ||
-               (estimate_.translation_score >= 0.5 * min_peak_score_ &&
-                estimate_.normalized_overlap >= min_normalized_overlap_);
+  // Converged means verified: the final pose puts enough source samples on the target
+  // and, about sensor origins, few in space the target saw through. About centroids
+  // (no free-space test) a distinct translation peak is also required; scans taken
+  // metres apart give wider peaks, so a clear overlap lets half the score suffice.
+  const bool peak = estimate_.translation_score >= min_peak_score_ ||
+                    (estimate_.translation_score >= 0.5 * min_peak_score_ &&
+                     estimate_.normalized_overlap >= min_normalized_overlap_);
+  converged_ =
+      estimate_.verified && (used_center_ == ProjectionCenter::SensorOrigin || peak);
   if (!converged_)
-    PCL_DEBUG("[pcl::%s::computeTransformation] translation peak score %g (normalised "
-              "overlap %g) is below %g (%g with an overlap of %g): not converged\n",
-              getClassName().c_str(), estimate_.translation_score,
-              estimate_.normalized_overlap, min_peak_score_, 0.5 * min_peak_score_,
-              min_normalized_overlap_);
+    PCL_DEBUG("[pcl::%s::computeTransformation] not verified: inlier fraction %g, "
+              "free-space violation %g, %d samples, peak score %g: not converged\n",
+              getClassName().c_str(), estimate_.inlier_fraction,
+              estimate_.free_space_violation, estimate_.verification_samples,
+              estimate_.translation_score);
   phaser_detail::transformWhole(*input_, output, final_transformation_);
 }
 

@@ -1,0 +1,67 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ */
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace pcl_phaser {
+
+/** \brief Points grouped by the cubic voxel that holds them: the groups in increasing
+ *  order of their voxel key, and within a group the points in input order, so every
+ *  use is deterministic. Points that are not finite or lie beyond 2^20 voxels of the
+ *  origin are left out. */
+struct VoxelGroups {
+  double voxel_size = 1.0;        ///< edge of a voxel, metres
+  std::vector<std::int64_t> keys; ///< one per group, increasing
+  std::vector<Eigen::Index>
+      offsets;                     ///< group g holds order[offsets[g], offsets[g + 1])
+  std::vector<Eigen::Index> order; ///< point indices, grouped
+  std::size_t size() const { return keys.size(); }
+};
+
+/** \brief Key of the voxel of edge \a voxel_size that holds \a p (the keys of
+ *  VoxelGroups); false when \a p is not finite or out of range. */
+bool voxelKey(const Eigen::Vector3d& p, double voxel_size, std::int64_t& key);
+
+/** \brief Groups \a points (3 x n) by voxels of edge \a voxel_size (> 0). */
+VoxelGroups groupByVoxel(const Eigen::Matrix3Xd& points, double voxel_size);
+
+/** \brief The centroid of every voxel of edge \a voxel_size that holds at least
+ *  \a min_points points: a cloud of even density (one sample per occupied voxel). */
+Eigen::Matrix3Xd voxelCentroids(const Eigen::Matrix3Xd& points, double voxel_size,
+                                int min_points = 1);
+
+/** \brief Fixed-radius nearest-point queries on a point set: cells of edge radius;
+ *  a query reads the 27 cells around it. */
+class PointIndex {
+public:
+  PointIndex() = default;
+  /** \param[in] points 3 x n (copied) \param[in] radius query radius in metres (> 0)
+   *  \param[in] normals optional unit normal per point (3 x n; zero: none) */
+  PointIndex(const Eigen::Matrix3Xd& points, double radius,
+             const Eigen::Matrix3Xd& normals = Eigen::Matrix3Xd());
+  /** \brief Squared distance from \a q to its nearest point if that lies within
+   *  radius(), else +infinity. */
+  double nearestSquaredDistance(const Eigen::Vector3d& q) const;
+  /** \brief The same among the points whose normal agrees with \a normal (dot product
+   *  >= \a min_cosine) or that have none; a zero \a normal accepts every point. */
+  double nearestSquaredDistance(const Eigen::Vector3d& q, const Eigen::Vector3d& normal,
+                                double min_cosine) const;
+  double radius() const { return radius_; }
+  bool empty() const { return points_.cols() == 0; }
+
+private:
+  double radius_ = 0.0;
+  Eigen::Matrix3Xd points_;
+  Eigen::Matrix3Xd normals_; ///< empty, or one per point
+  std::unordered_map<std::int64_t, std::pair<Eigen::Index, Eigen::Index>> cells_;
+};
+
+} // namespace pcl_phaser

@@ -1,0 +1,143 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ */
+#include <pcl_phaser/core/error.h>
+#include <pcl_phaser/core/voxel_hash.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace pcl_phaser {
+
+namespace {
+
+constexpr std::int64_t kBias = std::int64_t(1) << 20;
+
+} // namespace
+
+bool voxelKey(const Eigen::Vector3d& p, double voxel, std::int64_t& key)
+{
+  const Eigen::Array3d c = (p.array() / voxel).floor();
+  if (!c.allFinite() || (c.abs() >= static_cast<double>(kBias - 1)).any())
+    return false;
+  key = 0;
+  for (int a = 0; a < 3; ++a)
+    key = (key << 21) | (static_cast<std::int64_t>(c[a]) + kBias);
+  return true;
+}
+
+namespace {
+
+std::int64_t offsetKey(std::int64_t key, int dx, int dy, int dz)
+{
+  constexpr std::int64_t kY = std::int64_t(1) << 21, kX = kY << 21;
+  return key + dx * kX + dy * kY + dz;
+}
+
+} // namespace
+
+VoxelGroups groupByVoxel(const Eigen::Matrix3Xd& points, double voxel_size)
+{
+  if (!(voxel_size > 0.0) || !std::isfinite(voxel_size))
+    throw InvalidArgument("voxel size must be positive");
+  std::vector<std::pair<std::int64_t, Eigen::Index>> keyed;
+  keyed.reserve(points.cols());
+  for (Eigen::Index i = 0; i < points.cols(); ++i) {
+    std::int64_t key = 0;
+    if (voxelKey(points.col(i), voxel_size, key))
+      keyed.emplace_back(key, i);
+  }
+  std::sort(keyed.begin(), keyed.end());
+  VoxelGroups groups;
+  groups.voxel_size = voxel_size;
+  groups.order.reserve(keyed.size());
+  for (std::size_t i = 0; i < keyed.size(); ++i) {
+    if (i == 0 || keyed[i].first != keyed[i - 1].first) {
+      groups.keys.push_back(keyed[i].first);
+      groups.offsets.push_back(static_cast<Eigen::Index>(i));
+    }
+    groups.order.push_back(keyed[i].second);
+  }
+  groups.offsets.push_back(static_cast<Eigen::Index>(keyed.size()));
+  return groups;
+}
+
+Eigen::Matrix3Xd voxelCentroids(const Eigen::Matrix3Xd& points, double voxel_size,
+                                int min_points)
+{
+  const VoxelGroups groups = groupByVoxel(points, voxel_size);
+  Eigen::Matrix3Xd out(3, groups.size());
+  Eigen::Index count = 0;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const Eigen::Index begin = groups.offsets[g], end = groups.offsets[g + 1];
+    if (end - begin < min_points)
+      continue;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (Eigen::Index k = begin; k < end; ++k)
+      sum += points.col(groups.order[k]);
+    out.col(count++) = sum / static_cast<double>(end - begin);
+  }
+  out.conservativeResize(3, count);
+  return out;
+}
+
+PointIndex::PointIndex(const Eigen::Matrix3Xd& points, double radius,
+                       const Eigen::Matrix3Xd& normals)
+    : radius_(radius)
+{
+  if (normals.cols() != 0 && normals.cols() != points.cols())
+    throw InvalidArgument("PointIndex: one normal per point, or none");
+  const VoxelGroups groups = groupByVoxel(points, radius);
+  points_.resize(3, static_cast<Eigen::Index>(groups.order.size()));
+  if (normals.cols() != 0)
+    normals_.resize(3, points_.cols());
+  for (std::size_t k = 0; k < groups.order.size(); ++k) {
+    points_.col(static_cast<Eigen::Index>(k)) = points.col(groups.order[k]);
+    if (normals.cols() != 0)
+      normals_.col(static_cast<Eigen::Index>(k)) = normals.col(groups.order[k]);
+  }
+  cells_.reserve(groups.size());
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    cells_.emplace(groups.keys[g],
+                   std::make_pair(groups.offsets[g], groups.offsets[g + 1]));
+}
+
+double PointIndex::nearestSquaredDistance(const Eigen::Vector3d& q) const
+{
+  return nearestSquaredDistance(q, Eigen::Vector3d::Zero(), 0.0);
+}
+
+double PointIndex::nearestSquaredDistance(const Eigen::Vector3d& q,
+                                          const Eigen::Vector3d& normal,
+                                          double min_cosine) const
+{
+  const bool check = normals_.cols() != 0 && !normal.isZero();
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  std::int64_t key = 0;
+  if (points_.cols() == 0 || !voxelKey(q, radius_, key))
+    return kNone;
+  double best = radius_ * radius_;
+  bool found = false;
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dz = -1; dz <= 1; ++dz) {
+        const auto it = cells_.find(offsetKey(key, dx, dy, dz));
+        if (it == cells_.end())
+          continue;
+        for (Eigen::Index k = it->second.first; k < it->second.second; ++k) {
+          if (check && !normals_.col(k).isZero() &&
+              normals_.col(k).dot(normal) < min_cosine)
+            continue;
+          const double d2 = (points_.col(k) - q).squaredNorm();
+          if (d2 <= best) {
+            best = d2;
+            found = true;
+          }
+        }
+      }
+  return found ? best : kNone;
+}
+
+} // namespace pcl_phaser

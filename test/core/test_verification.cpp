@@ -1,0 +1,225 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ */
+#include <pcl_phaser/core/error.h>
+#include <pcl_phaser/core/spatial_correlation.h>
+#include <pcl_phaser/core/surface_orientation.h>
+#include <pcl_phaser/core/verification.h>
+#include <pcl_phaser/core/voxel_hash.h>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+using namespace pcl_phaser;
+
+namespace {
+
+Eigen::Matrix3Xd randomPoints(int n, double extent, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-extent, extent);
+  Eigen::Matrix3Xd p(3, n);
+  for (int i = 0; i < n; ++i)
+    p.col(i) = Eigen::Vector3d(u(rng), u(rng), u(rng));
+  return p;
+}
+
+/** A wall x = d (|y|, |z| < half) sampled on a grid of step h. */
+Eigen::Matrix3Xd wall(double d, double half, double h)
+{
+  const int k = static_cast<int>(2 * half / h) + 1;
+  Eigen::Matrix3Xd p(3, k * k);
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j)
+      p.col(i * k + j) = Eigen::Vector3d(d, -half + i * h, -half + j * h);
+  return p;
+}
+
+} // namespace
+
+TEST(PointIndex, NearestDistanceMatchesBruteForceWithinTheRadius)
+{
+  const Eigen::Matrix3Xd points = randomPoints(2000, 5.0, 1);
+  const Eigen::Matrix3Xd queries = randomPoints(300, 5.5, 2);
+  const double radius = 0.7;
+  const PointIndex index(points, radius);
+  int found = 0;
+  for (Eigen::Index q = 0; q < queries.cols(); ++q) {
+    const double brute =
+        (points.colwise() - queries.col(q)).colwise().squaredNorm().minCoeff();
+    const double got = index.nearestSquaredDistance(queries.col(q));
+    if (brute <= radius * radius) {
+      EXPECT_NEAR(got, brute, 1e-12);
+      ++found;
+    } else {
+      EXPECT_TRUE(std::isinf(got));
+    }
+  }
+  EXPECT_GT(found, 50); // the test exercised both branches
+  EXPECT_LT(found, 300);
+}
+
+TEST(PointIndex, EmptyAndNonFiniteQueriesFindNothing)
+{
+  const PointIndex empty(Eigen::Matrix3Xd(3, 0), 1.0);
+  EXPECT_TRUE(std::isinf(empty.nearestSquaredDistance(Eigen::Vector3d::Zero())));
+  const PointIndex one(Eigen::Matrix3Xd::Zero(3, 1), 1.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(std::isinf(one.nearestSquaredDistance(Eigen::Vector3d(nan, 0, 0))));
+  EXPECT_THROW(groupByVoxel(Eigen::Matrix3Xd::Zero(3, 1), 0.0), InvalidArgument);
+}
+
+TEST(VoxelCentroids, OneSamplePerOccupiedVoxelInKeyOrder)
+{
+  Eigen::Matrix3Xd p(3, 4);
+  p << 0.1, 0.3, 2.5, 0.2, 0.1, 0.1, 0.5, 0.2, 0.1, 0.1, 0.5, 0.2;
+  const Eigen::Matrix3Xd c = voxelCentroids(p, 1.0);
+  ASSERT_EQ(c.cols(), 2);
+  EXPECT_TRUE(c.col(0).isApprox(Eigen::Vector3d(0.2, 0.4 / 3, 0.4 / 3)));
+  EXPECT_TRUE(c.col(1).isApprox(Eigen::Vector3d(2.5, 0.5, 0.5)));
+  EXPECT_EQ(voxelCentroids(p, 1.0, 2).cols(), 1);
+}
+
+TEST(VerifyPose, RightPoseVerifiesAndAShiftedOneDoesNot)
+{
+  const Eigen::Matrix3Xd target = randomPoints(5000, 10.0, 3);
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Vector3d t(1.0, -2.0, 0.5);
+  // source = R^T (target - t): the pose (R, t) maps it back exactly.
+  const Eigen::Matrix3Xd source = R.transpose() * (target.colwise() - t);
+  const PointIndex index(target, 0.3);
+  const PoseVerification right = verifyPose(index, source, R, t);
+  EXPECT_DOUBLE_EQ(right.inlier_fraction, 1.0);
+  EXPECT_NEAR(right.score, 1.0, 1e-9);
+  const PoseVerification wrong =
+      verifyPose(index, source, R, t + Eigen::Vector3d(30, 0, 0));
+  EXPECT_EQ(wrong.inlier_fraction, 0.0);
+  EXPECT_EQ(wrong.score, 0.0);
+  const PoseVerification none = verifyPose(index, Eigen::Matrix3Xd(3, 0), R, t);
+  EXPECT_EQ(none.inlier_fraction, 0.0);
+  EXPECT_THROW(verifyPose(index, {source, Eigen::VectorXd::Ones(3), {}}, R, t),
+               InvalidArgument);
+}
+
+TEST(VerifyPose, SameResultForAnyThreadCount)
+{
+  const Eigen::Matrix3Xd target = randomPoints(4000, 10.0, 4);
+  const Eigen::Matrix3Xd source = randomPoints(3000, 10.0, 5);
+  const PointIndex index(target, 0.5);
+  const FreeSpace seen = freeSpace(target, 32, 0.5);
+  const Eigen::VectorXd w = Eigen::VectorXd::LinSpaced(source.cols(), 1.0, 2.0);
+  const VerificationSamples samples{source, w, {}};
+  const PoseVerification one = verifyPose(index, samples, Eigen::Matrix3d::Identity(),
+                                          Eigen::Vector3d::Zero(), 1, &seen);
+  for (int threads : {2, 3, 8}) {
+    const PoseVerification many =
+        verifyPose(index, samples, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(),
+                   threads, &seen);
+    EXPECT_EQ(one.inlier_fraction, many.inlier_fraction);
+    EXPECT_EQ(one.score, many.score);
+    EXPECT_EQ(one.free_space_violation, many.free_space_violation);
+  }
+}
+
+TEST(FreeSpace, SamplesInFrontOfWhatTheSensorSawViolateAndThoseBehindDoNot)
+{
+  const Eigen::Matrix3Xd target = wall(10.0, 4.0, 0.1); // seen from the origin
+  const FreeSpace seen = freeSpace(target, 64, 0.5);
+  const PointIndex index(target, 0.3);
+  const Eigen::Matrix3Xd samples = wall(1.0, 0.3, 0.05); // same directions, at ~1/10
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const VerificationSamples s{samples, Eigen::VectorXd::Ones(samples.cols()), {}};
+  const PoseVerification in_front =
+      verifyPose(index, s, I, Eigen::Vector3d(4.0, 0, 0), 1, &seen);
+  EXPECT_GT(in_front.free_space_violation, 0.99); // at x = 5 m, the sensor saw to 10 m
+  const PoseVerification behind =
+      verifyPose(index, s, I, Eigen::Vector3d(14.0, 0, 0), 1, &seen);
+  EXPECT_EQ(behind.free_space_violation, 0.0); // occluded by the wall: unknown, no vote
+  const PoseVerification on_it =
+      verifyPose(index, s, I, Eigen::Vector3d(9.0, 0, 0), 1, &seen);
+  EXPECT_EQ(on_it.free_space_violation, 0.0); // within the margin of the wall
+  EXPECT_EQ(on_it.inlier_fraction, 1.0);
+}
+
+TEST(VerifyPose, OnlyTargetPointsWithAgreeingNormalsMatch)
+{
+  const Eigen::Matrix3Xd target = wall(5.0, 2.0, 0.1);
+  const Eigen::Matrix3Xd normals =
+      Eigen::Vector3d(-1, 0, 0).replicate(1, target.cols()); // faces the origin
+  const PointIndex index(target, 0.3, normals);
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const Eigen::VectorXd w = Eigen::VectorXd::Ones(target.cols());
+  const VerificationSamples same{target, w, normals};
+  EXPECT_EQ(verifyPose(index, same, I, Eigen::Vector3d::Zero()).inlier_fraction, 1.0);
+  const VerificationSamples flipped{target, w, -normals}; // seen from the other side
+  EXPECT_EQ(verifyPose(index, flipped, I, Eigen::Vector3d::Zero()).inlier_fraction,
+            0.0);
+  const VerificationSamples unknown{target, w,
+                                    Eigen::Matrix3Xd::Zero(3, target.cols())};
+  EXPECT_EQ(verifyPose(index, unknown, I, Eigen::Vector3d::Zero()).inlier_fraction,
+            1.0);
+  EXPECT_THROW(PointIndex(target, 0.3, Eigen::Matrix3Xd::Zero(3, 2)), InvalidArgument);
+}
+
+TEST(SurfacePatches, APlaneGivesItsNormalTowardsTheViewpoint)
+{
+  const Eigen::Matrix3Xd p = wall(5.0, 1.95, 0.1); // 10 x 10 points per voxel
+  const SurfacePatches patches = surfacePatches(p, 1.0, Eigen::Vector3d::Zero());
+  ASSERT_GT(patches.normals.cols(), 10);
+  for (Eigen::Index i = 0; i < patches.normals.cols(); ++i) {
+    EXPECT_NEAR(patches.normals(0, i), -1.0, 1e-9); // faces the origin
+    EXPECT_GT(patches.weights[i], 0.9);
+  }
+  const SurfacePatches other_side = surfacePatches(p, 1.0, Eigen::Vector3d(10, 0, 0));
+  EXPECT_NEAR(other_side.normals(0, 0), 1.0, 1e-9);
+}
+
+TEST(OrientationWeights, BalanceAPlaneThatHoldsMostSamples)
+{
+  // A floor of 1600 samples and a wall of 400: each class weighs 1 / count (floored at
+  // 2 % of the samples), so both carry the same total weight.
+  Eigen::Matrix3Xd floor(3, 1600), side(3, 400);
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j)
+      floor.col(i * 40 + j) = Eigen::Vector3d(0.5 * i + 0.25, 0.5 * j + 0.25, 0.01);
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 10; ++j)
+      side.col(i * 10 + j) = Eigen::Vector3d(0.01, 0.5 * i + 0.25, 0.5 * j + 0.25);
+  Eigen::Matrix3Xd all(3, 2000);
+  all << floor, side;
+  const SurfacePatches patches = surfacePatches(all, 1.0, Eigen::Vector3d(5, 5, 5), 3);
+  const Eigen::VectorXd w = orientationWeights(patches, all);
+  EXPECT_NEAR(w.sum(), 1.0, 1e-12);
+  EXPECT_NEAR(w.head(1600).sum(), w.tail(400).sum(), 0.1);
+}
+
+TEST(CorrelateSpectraWhitened, ZeroExponentIsThePlainCorrelationAndAShiftIsFound)
+{
+  const Eigen::Matrix3Xd target = randomPoints(3000, 8.0, 6);
+  const Eigen::Vector3d shift(1.5, -0.75, 0.5);
+  const Eigen::Matrix3Xd source = target.colwise() - shift;
+  SpatialGridParameters gp;
+  gp.grid_size = 64;
+  const SpatialGrid grid = makeSpatialGrid(target, gp);
+  const SpatialSpectrum T = computeSpectrum(voxelize(grid, target));
+  const SpatialSpectrum S = computeSpectrum(voxelize(grid, source));
+  const SpatialVolume plain = correlateSpectra(T, S);
+  const SpatialVolume zero = correlateSpectraWhitened(T, SpatialSpectrum(S), 0.0);
+  ASSERT_EQ(plain.values.size(), zero.values.size());
+  for (std::size_t i = 0; i < plain.values.size(); i += 97)
+    EXPECT_NEAR(plain.values[i], zero.values[i],
+                1e-9 * std::abs(plain.values[0]) + 1e-9);
+  for (double exponent : {0.5, 1.0}) {
+    const SpatialCorrelationResult r =
+        findSpatialPeak(correlateSpectraWhitened(T, SpatialSpectrum(S), exponent));
+    EXPECT_LT((r.shift - shift).norm(), 0.5 * grid.voxel_size) << exponent;
+  }
+  EXPECT_THROW(correlateSpectraWhitened(T, SpatialSpectrum(S), 1.5), InvalidArgument);
+  EXPECT_THROW(correlateSpectraWhitened(T, SpatialSpectrum(S), -0.1), InvalidArgument);
+}

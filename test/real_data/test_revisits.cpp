@@ -1,0 +1,135 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ *
+ * Revisits: two different scans of one place taken metres apart (balm_handheld), with
+ * default parameters about the sensor origin. The reference poses are LiDAR-inertial
+ * odometry, good to centimetres: success is judged at 5 deg / 0.6 m.
+ */
+#include "real_data_support.h"
+
+#include <pcl_phaser/phaser_registration.h>
+
+#include <pcl/point_types.h>
+
+#include <Eigen/Geometry>
+
+#include <fstream>
+#include <sstream>
+
+namespace {
+
+using Cloud = pcl::PointCloud<pcl::PointXYZI>;
+const std::string kDir = "lidar/balm_handheld/";
+
+/** T_target_source of the pair (source, target) in pairs.txt; identity if absent. */
+Eigen::Matrix4d referencePose(const std::string& source, const std::string& target)
+{
+  std::ifstream in(pcl_phaser::test::dataPath(kDir + "pairs.txt"));
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream is(line);
+    std::string s, t;
+    double dist, rot, overlap;
+    if (line.empty() || line[0] == '#' || !(is >> s >> t >> dist >> rot >> overlap))
+      continue;
+    if (s != source || t != target)
+      continue;
+    Eigen::Matrix4d T;
+    for (int i = 0; i < 16; ++i)
+      is >> T(i / 4, i % 4);
+    return T;
+  }
+  ADD_FAILURE() << "pair " << source << " " << target << " not in pairs.txt";
+  return Eigen::Matrix4d::Identity();
+}
+
+struct Errors {
+  double rotation_deg, translation_m;
+};
+
+Errors errors(const Eigen::Matrix4d& estimate, const Eigen::Matrix4d& truth)
+{
+  const Eigen::Matrix3d dR =
+      estimate.topLeftCorner<3, 3>().transpose() * truth.topLeftCorner<3, 3>();
+  return {Eigen::AngleAxisd(dR).angle() * 180.0 / M_PI,
+          (estimate.topRightCorner<3, 1>() - truth.topRightCorner<3, 1>()).norm()};
+}
+
+/** Registers with defaults; \a why gets the verification figures. */
+Eigen::Matrix4d align(const Cloud::ConstPtr& source, const Cloud::ConstPtr& target,
+                      bool& converged, std::string* why = nullptr)
+{
+  pcl::PhaserRegistration<pcl::PointXYZI, pcl::PointXYZI> phaser;
+  phaser.setNumberOfThreads(2);
+  phaser.setInputSource(source);
+  phaser.setInputTarget(target);
+  Cloud aligned;
+  phaser.align(aligned);
+  converged = phaser.hasConverged();
+  if (why)
+    *why = "inlier fraction " + std::to_string(phaser.getEstimate().inlier_fraction) +
+           ", free-space violation " +
+           std::to_string(phaser.getEstimate().free_space_violation);
+  return phaser.getFinalTransformation().cast<double>();
+}
+
+} // namespace
+
+// Pairs 3-20 m apart, chosen across the distance range before any tuning on them
+// (the first pairs of each distance bin in pairs.txt).
+TEST(Revisits, PairsMetresApartRegisterAndConverge)
+{
+  PCL_PHASER_REQUIRE_DATA(kDir + "pairs.txt");
+  const std::vector<std::pair<std::string, std::string>> pairs = {
+      {"full18.pcd", "full36.pcd"},   // 3.2 m, 117 deg
+      {"full90.pcd", "full108.pcd"},  // 8.3 m, 156 deg
+      {"full84.pcd", "full162.pcd"},  // 12.4 m, 83 deg
+      {"full54.pcd", "full156.pcd"}}; // 20.8 m, 92 deg
+  for (const auto& [s, t] : pairs) {
+    const auto source = pcl_phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + s);
+    const auto target = pcl_phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + t);
+    bool converged = false;
+    const Errors e = errors(align(source, target, converged), referencePose(s, t));
+    EXPECT_LT(e.rotation_deg, 5.0) << s << " -> " << t;
+    EXPECT_LT(e.translation_m, 0.6) << s << " -> " << t;
+    EXPECT_TRUE(converged) << s << " -> " << t;
+  }
+}
+
+TEST(Revisits, SwappedInputsGiveTheInverse)
+{
+  PCL_PHASER_REQUIRE_DATA(kDir + "pairs.txt");
+  const auto a =
+      pcl_phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + "full120.pcd");
+  const auto b =
+      pcl_phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + "full132.pcd");
+  const Eigen::Matrix4d truth = referencePose("full120.pcd", "full132.pcd");
+  bool forward_converged = false, backward_converged = false;
+  const Errors forward = errors(align(a, b, forward_converged), truth);
+  const Errors backward = errors(align(b, a, backward_converged), truth.inverse());
+  EXPECT_LT(forward.rotation_deg, 5.0);
+  EXPECT_LT(forward.translation_m, 0.6);
+  EXPECT_LT(backward.rotation_deg, 5.0);
+  EXPECT_LT(backward.translation_m, 0.6);
+  EXPECT_TRUE(forward_converged);
+  EXPECT_TRUE(backward_converged);
+}
+
+// A scan against a scan of another place (KITTI, a road) does not converge, and
+// neither does a revisit pair whose source is moved 40 m away so that nothing overlaps.
+TEST(Revisits, UnrelatedPlacesDoNotConverge)
+{
+  PCL_PHASER_REQUIRE_DATA(kDir + "full18.pcd");
+  PCL_PHASER_REQUIRE_DATA("lidar/kitti_raw_hdl64/0000000000.bin");
+  const auto balm =
+      pcl_phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + "full18.pcd");
+  const auto kitti = pcl_phaser::test::loadFiniteCloud<pcl::PointXYZI>(
+      "lidar/kitti_raw_hdl64/0000000000.bin");
+  bool converged = true;
+  std::string why;
+  align(balm, kitti, converged, &why);
+  EXPECT_FALSE(converged) << why;
+  align(kitti, balm, converged, &why);
+  EXPECT_FALSE(converged) << why;
+}

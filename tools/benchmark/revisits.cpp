@@ -1,0 +1,468 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ *
+ * -study revisits: each pair of lidar/balm_handheld/pairs.txt ("source target dist_m
+ * rel_rot_deg overlap" then T_target_source row-major 4 x 4) by each method, run as the
+ * compare study runs them; success at 2 m and at 0.6 m (RRE < 5 deg both), by bins of
+ * the distance between the scans, with the converged flag's false accepts and the
+ * times in units of one 128^3 FFT. With -derived-pairs the pairs are derived from
+ * poses_T_world_lidar.txt instead (derivePairs() in revisits.h).
+ */
+#include "methods.h"
+#include "protocol.h"
+#include "revisits.h"
+
+#include "../fft_yardstick.h"
+
+#include <pcl_phaser/cloud_io.h>
+
+#include <pcl/console/parse.h>
+#include <pcl/console/print.h>
+#include <pcl/filters/filter.h>
+
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace pcl_phaser {
+namespace bench {
+
+namespace {
+
+namespace console = pcl::console;
+
+constexpr double kRreThreshold = 5.0;  ///< deg, both success levels
+constexpr double kRteThresholdA = 2.0; ///< m, loop-closure level
+constexpr double kRteThresholdB = 0.6; ///< m, the benchmark's usual level
+const char* const kFolder = "lidar/balm_handheld";
+
+struct RevisitOptions {
+  std::string data = PCL_PHASER_DEFAULT_DATA_DIR;
+  std::string pairs_file; ///< empty: <data>/lidar/balm_handheld/pairs.txt
+  std::vector<std::string> methods = {"phaser", "phaser_xyz", "sacia", "prerejective"};
+  int max_pairs = 0, threads = 2, fpcs_seconds = 10;
+  int derived_pairs = 0; ///< per bin from the poses instead of the pairs file; 0: off
+  unsigned seed = 1;
+  double voxel = 1.0; ///< leaf of PCL's methods, as for the compare study's LiDAR
+  std::string csv, markdown, plots;
+};
+
+/** One method on one pair. */
+struct RevisitTrial {
+  std::string method;
+  RevisitPair pair;
+  double rre = 0.0, rte = 0.0, ms = 0.0, score = 0.0, overlap_est = 0.0;
+  bool converged = false;
+
+  bool successA() const { return rre < kRreThreshold && rte < kRteThresholdA; }
+  bool successB() const { return rre < kRreThreshold && rte < kRteThresholdB; }
+};
+
+/** A range of the distance between the scans, [lo, hi). */
+struct Bin {
+  std::string label;
+  double lo, hi;
+};
+
+const std::vector<Bin>& bins()
+{
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  static const std::vector<Bin> all = {
+      {"[0, 5) m", 0.0, 5.0},     {"[5, 10) m", 5.0, 10.0}, {"[10, 15) m", 10.0, 15.0},
+      {"[15, inf) m", 15.0, inf}, {"<10 m", 0.0, 10.0},     {">=10 m", 10.0, inf},
+      {"all", 0.0, inf}};
+  return all;
+}
+constexpr std::size_t kDisjointBins = 4; ///< the first bins() partition the distances
+
+std::vector<std::string> split(const std::string& text)
+{
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  for (std::string part; std::getline(in, part, ',');)
+    if (!part.empty())
+      parts.push_back(part);
+  return parts;
+}
+
+const Method* findMethod(const std::string& name)
+{
+  for (const Method& m : allMethods())
+    if (m.name == name)
+      return &m;
+  return nullptr;
+}
+
+bool parseRevisitOptions(int argc, char** argv, RevisitOptions& o)
+{
+  std::string methods;
+  console::parse_argument(argc, argv, "-data", o.data);
+  console::parse_argument(argc, argv, "-pairs-file", o.pairs_file);
+  if (console::parse_argument(argc, argv, "-methods", methods) >= 0)
+    o.methods = split(methods);
+  console::parse_argument(argc, argv, "-max-pairs", o.max_pairs);
+  console::parse_argument(argc, argv, "-derived-pairs", o.derived_pairs);
+  console::parse_argument(argc, argv, "-threads", o.threads);
+  console::parse_argument(argc, argv, "-seed", o.seed);
+  console::parse_argument(argc, argv, "-voxel", o.voxel);
+  console::parse_argument(argc, argv, "-fpcs_time", o.fpcs_seconds);
+  console::parse_argument(argc, argv, "-csv", o.csv);
+  console::parse_argument(argc, argv, "-md", o.markdown);
+  console::parse_argument(argc, argv, "-plots", o.plots);
+  bool ok = true;
+  auto fail = [&](const std::string& what) {
+    console::print_error("Invalid option: %s\n", what.c_str());
+    ok = false;
+  };
+  if (o.methods.empty())
+    fail("-methods: none given");
+  for (const std::string& m : o.methods)
+    if (!findMethod(m))
+      fail("-methods: unknown method " + m);
+  if (o.max_pairs < 0)
+    fail("-max-pairs");
+  if (o.derived_pairs < 0)
+    fail("-derived-pairs");
+  if (o.threads < 1 || o.threads > 256)
+    fail("-threads");
+  if (!(o.voxel > 0.0))
+    fail("-voxel");
+  if (o.fpcs_seconds < 1)
+    fail("-fpcs_time");
+  return ok;
+}
+
+/** The pairs of the study: those of the pairs file or, with -derived-pairs, those
+ * derivePairs() finds in the poses; \a origin says which, for the report. False (with
+ * a message) on an unreadable or malformed file. */
+bool loadPairs(const RevisitOptions& o, const std::string& pairs_file,
+               const std::string& poses_file, std::vector<RevisitPair>& pairs,
+               std::string& origin)
+{
+  std::string error;
+  std::vector<RevisitPair> listed;
+  std::vector<ScanPose> poses;
+  if (!readPairs(pairs_file, listed, error) ||
+      (o.derived_pairs > 0 && !readScanPoses(poses_file, poses, error))) {
+    console::print_error("revisits: %s\n", error.c_str());
+    return false;
+  }
+  pairs = listed;
+  origin = "the pairs of " + pairs_file;
+  if (o.derived_pairs == 0)
+    return true;
+  DerivedCounts counts;
+  pairs = derivePairs(poses, listed, o.derived_pairs, o.seed, &counts);
+  std::ostringstream text;
+  text << pairs.size() << " pairs derived from " << poses_file << " (up to "
+       << o.derived_pairs << " per bin, seed " << o.seed << ", none of " << pairs_file
+       << "; taken / ordered candidates:";
+  for (std::size_t b = 0; b < kDerivedBins; ++b)
+    text << (b ? "," : "") << " [" << kDerivedEdges[b] << ", " << kDerivedEdges[b + 1]
+         << (b + 1 == kDerivedBins ? "] m " : ") m ") << counts.chosen[b] << " / "
+         << counts.candidates[b];
+  origin = text.str() + ")";
+  std::fprintf(stderr, "revisits: %s\n", origin.c_str());
+  return true;
+}
+
+/** A scan with its finite points only (as the compare study reads scans), or null. */
+Cloud::ConstPtr loadFiniteScan(const std::string& path)
+{
+  auto cloud = pcl::make_shared<Cloud>();
+  std::string error;
+  if (!pcl::phaser::loadCloud(path, *cloud, &error)) {
+    console::print_error("%s\n", error.c_str());
+    return nullptr;
+  }
+  pcl::Indices kept;
+  pcl::removeNaNFromPointCloud(*cloud, *cloud, kept);
+  return cloud;
+}
+
+void writeCsvRow(std::ostream& out, const RevisitTrial& t)
+{
+  char line[512];
+  std::snprintf(line, sizeof(line), "%s,%s,%s,%g,%g,%g,%.6f,%.6f,%d,%.3f,%.6g,%.6g\n",
+                t.method.c_str(), t.pair.source.c_str(), t.pair.target.c_str(),
+                t.pair.dist, t.pair.rel_rot, t.pair.overlap, t.rre, t.rte,
+                t.converged ? 1 : 0, t.ms, t.score, t.overlap_est);
+  out << line << std::flush; // a long run can be read while it goes
+}
+
+/** Every pair by every method, as Runner::run() of the compare study does it. */
+std::vector<RevisitTrial> runTrials(const RevisitOptions& o, const std::string& folder,
+                                    const std::vector<RevisitPair>& pairs,
+                                    std::ostream* csv)
+{
+  MethodSettings settings;
+  settings.threads = o.threads;
+  settings.voxel = o.voxel;
+  settings.seed = o.seed; // + pose, which is 0 for real pairs
+  settings.fpcs_seconds = o.fpcs_seconds;
+  std::map<std::string, Cloud::ConstPtr> scans; // each read once
+  auto scan = [&](const std::string& name) {
+    if (!scans.count(name))
+      scans[name] = loadFiniteScan(
+          std::filesystem::path(name).is_absolute() ? name : folder + "/" + name);
+    return scans[name];
+  };
+  std::vector<RevisitTrial> trials;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const RevisitPair& pair = pairs[i];
+    const Cloud::ConstPtr source = scan(pair.source);
+    const Cloud::ConstPtr target = scan(pair.target);
+    if (!source || !target)
+      continue; // the loader said why
+    for (const std::string& name : o.methods) {
+      const MethodResult r = findMethod(name)->run(source, target, settings);
+      RevisitTrial t;
+      t.method = name;
+      t.pair = pair;
+      t.rre = rreDeg(r.transformation, pair.truth);
+      t.rte = rteM(r.transformation, pair.truth);
+      t.ms = r.ms;
+      t.score = r.score;
+      t.overlap_est = r.overlap;
+      t.converged = r.converged;
+      std::fprintf(stderr,
+                   "[%zu/%zu] %s -> %s (%.2f m) %-12s RRE %7.2f deg  RTE %7.3f m  "
+                   "converged %d  %8.0f ms\n",
+                   i + 1, pairs.size(), pair.source.c_str(), pair.target.c_str(),
+                   pair.dist, name.c_str(), t.rre, t.rte, t.converged ? 1 : 0, t.ms);
+      if (csv)
+        writeCsvRow(*csv, t);
+      trials.push_back(t);
+    }
+  }
+  return trials;
+}
+
+std::string format(const char* fmt, double value)
+{
+  if (!std::isfinite(value))
+    return "-";
+  char text[64];
+  std::snprintf(text, sizeof(text), fmt, value);
+  return text;
+}
+
+/** "k / n (p %)", "-" when n is 0. */
+std::string countOf(int k, int n)
+{
+  if (n == 0)
+    return "-";
+  return std::to_string(k) + " / " + std::to_string(n) + " (" +
+         format("%.0f %%", 100.0 * k / n) + ")";
+}
+
+struct BinSummary {
+  int n = 0, ok_a = 0, ok_b = 0;
+  int converged_failures = 0, converged_successes = 0;
+  double median_rre = NAN, median_rte = NAN, median_ms = NAN;
+};
+
+BinSummary summarise(const std::vector<RevisitTrial>& trials, const std::string& method,
+                     const Bin& bin)
+{
+  BinSummary s;
+  std::vector<double> rre, rte, ms;
+  for (const RevisitTrial& t : trials) {
+    if (t.method != method || t.pair.dist < bin.lo || t.pair.dist >= bin.hi)
+      continue;
+    ++s.n;
+    ms.push_back(t.ms);
+    s.ok_b += t.successB();
+    if (t.successA()) {
+      ++s.ok_a;
+      s.converged_successes += t.converged;
+      rre.push_back(t.rre);
+      rte.push_back(t.rte);
+    } else {
+      s.converged_failures += t.converged;
+    }
+  }
+  s.median_rre = median(rre);
+  s.median_rte = median(rte);
+  s.median_ms = median(ms);
+  return s;
+}
+
+void writeTable(std::ostream& out, const std::vector<RevisitTrial>& trials,
+                const std::vector<std::string>& methods, double fft_ms)
+{
+  out << "| method | distance | n | success @2 m | success @0.6 m | median RRE (deg) "
+         "| median RTE (m) | median time (ms) | median time (FFT128) | false accepts "
+         "(converged failures) | converged successes |\n"
+         "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const std::string& method : methods)
+    for (const Bin& bin : bins()) {
+      const BinSummary s = summarise(trials, method, bin);
+      out << "| " << method << " | " << bin.label << " | " << s.n << " | "
+          << format("%.0f %%", s.n ? 100.0 * s.ok_a / s.n : NAN) << " | "
+          << format("%.0f %%", s.n ? 100.0 * s.ok_b / s.n : NAN) << " | "
+          << format("%.2f", s.median_rre) << " | " << format("%.3f", s.median_rte)
+          << " | " << format("%.0f", s.median_ms) << " | "
+          << format("%.1f", s.median_ms / fft_ms) << " | "
+          << countOf(s.converged_failures, s.n - s.ok_a) << " | "
+          << countOf(s.converged_successes, s.ok_a) << " |\n";
+    }
+}
+
+/** DIR/revisits_success.{dat,gp} and, with gnuplot, the PNG; returns the PNG or "". */
+std::string writePlot(const std::string& dir, const std::vector<RevisitTrial>& trials,
+                      const std::vector<std::string>& methods)
+{
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  const std::string base = dir + "/revisits_success";
+  std::ofstream dat(base + ".dat");
+  for (const std::string& method : methods) {
+    dat << "# " << method << ": bin, label, success @2 m (%), success @0.6 m (%), n\n";
+    for (std::size_t b = 0; b < kDisjointBins; ++b) {
+      const BinSummary s = summarise(trials, method, bins()[b]);
+      // gnuplot skips NaN (empty bins)
+      dat << b << " \"" << bins()[b].label << "\" "
+          << (s.n ? format("%g", 100.0 * s.ok_a / s.n) : "NaN") << " "
+          << (s.n ? format("%g", 100.0 * s.ok_b / s.n) : "NaN") << " " << s.n << "\n";
+    }
+    dat << "\n\n";
+  }
+  dat.close();
+  std::ofstream gp(base + ".gp");
+  gp << "set terminal pngcairo size 900,500 font ',11' noenhanced\nset output '" << base
+     << ".png'\nset title 'pcl_phaser_benchmark: revisit pairs (RRE < 5 deg; solid: "
+        "RTE "
+        "< 2 m, dashed: RTE < 0.6 m)'\nset key outside right\nset grid\n"
+     << "set xlabel 'distance between the scans'\nset xrange [-0.3:"
+     << kDisjointBins - 0.7 << "]\nset ylabel 'success (%)'\nset yrange [0:105]\nplot ";
+  for (std::size_t i = 0; i < methods.size(); ++i)
+    gp << (i ? ", \\\n     " : "") << "'" << base << ".dat' index " << i
+       << " using 1:3:xtic(2) with linespoints lc " << i + 1 << " dt 1 pt 7 title '"
+       << methods[i] << " @2 m', '" << base << ".dat' index " << i
+       << " using 1:4 with linespoints lc " << i + 1 << " dt 2 pt 6 title '"
+       << methods[i] << " @0.6 m'";
+  gp << "\n";
+  gp.close();
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0)
+    return "";
+  return std::system(("gnuplot '" + base + ".gp'").c_str()) == 0 ? base + ".png" : "";
+}
+
+void writeReport(std::ostream& md, int argc, char** argv,
+                 const std::vector<RevisitTrial>& trials, const RevisitOptions& o,
+                 const std::string& origin, double fft_ms)
+{
+  std::ostringstream command;
+  for (int i = 0; i < argc; ++i)
+    command << (i ? " " : "") << argv[i];
+  md << "Command: `" << command.str() << "`\n\n"
+     << "Revisit pairs: " << origin << " (voxel of PCL's methods " << o.voxel << " m, "
+     << o.threads << " threads). Success @2 m: RRE < " << kRreThreshold
+     << " deg and RTE < " << kRteThresholdA << " m; @0.6 m: RTE < " << kRteThresholdB
+     << " m. Median RRE / RTE over the successes @2 m; time over all trials. False "
+        "accepts: failures @2 m that the method reported as converged.\n\n"
+     << "Yardstick: one 128^3 real-to-complex FFT (FFTW_MEASURE, 1 thread) = "
+     << format("%.2f", fft_ms) << " ms (FFT128).\n\n";
+  writeTable(md, trials, o.methods, fft_ms);
+}
+
+} // namespace
+
+bool isRevisitsStudy(int argc, char** argv)
+{
+  std::string study;
+  return console::parse_argument(argc, argv, "-study", study) >= 0 &&
+         study == "revisits";
+}
+
+void printRevisitsHelp(const char* program)
+{
+  console::print_info(
+      "Usage: %s -study revisits [options]\n"
+      "  the real revisit pairs of <data>/%s, binned by distance\n"
+      "  -data DIR        the shared data directory (default %s)\n"
+      "  -pairs-file F    pairs (default <data>/%s/pairs.txt); scans are read\n"
+      "                   from <data>/%s unless their names are absolute\n"
+      "  -derived-pairs N instead of the pairs file, up to N pairs per bin [3, 5),\n"
+      "                   [5, 10), [10, 15), [15, 21] m derived from the poses of\n"
+      "                   poses_T_world_lidar.txt (scan gap >= 18, not in the pairs\n"
+      "                   file either way), shuffled with -seed (default 0: off)\n"
+      "  -max-pairs N     only the first N pairs (default 0: all)\n"
+      "  -methods A,B     default phaser,phaser_xyz,sacia,prerejective\n"
+      "  -threads N       threads for every method (default 2)\n"
+      "  -seed S          seed of PCL's RANSAC (default 1)\n"
+      "  -voxel V         leaf (m) of PCL's methods (default 1)\n"
+      "  -fpcs_time S     time limit of FPCS/KFPCS in seconds (default 10)\n"
+      "  -csv FILE        every trial as CSV\n"
+      "  -md FILE         the markdown summary (default: stdout)\n"
+      "  -plots DIR       revisits_success.{dat,gp,png} (PNG with gnuplot)\n",
+      program, kFolder, PCL_PHASER_DEFAULT_DATA_DIR, kFolder, kFolder);
+}
+
+int runRevisitsStudy(int argc, char** argv)
+{
+  if (console::find_switch(argc, argv, "-h") ||
+      console::find_switch(argc, argv, "--help")) {
+    printRevisitsHelp(argv[0]);
+    return 0;
+  }
+  RevisitOptions o;
+  if (!parseRevisitOptions(argc, argv, o)) {
+    printRevisitsHelp(argv[0]);
+    return 2;
+  }
+  console::setVerbosityLevel(console::L_ERROR);
+  const std::string folder =
+      std::filesystem::path(o.data + "/" + kFolder).lexically_normal().string();
+  const std::string pairs_file =
+      o.pairs_file.empty() ? folder + "/pairs.txt" : o.pairs_file;
+  const std::string poses_file = folder + "/poses_T_world_lidar.txt";
+  for (const std::string& path :
+       {folder, pairs_file, o.derived_pairs > 0 ? poses_file : folder})
+    if (!std::filesystem::exists(path)) {
+      std::fprintf(stderr, "revisits: %s not found, skipping\n", path.c_str());
+      return 0;
+    }
+  std::vector<RevisitPair> pairs;
+  std::string origin;
+  if (!loadPairs(o, pairs_file, poses_file, pairs, origin))
+    return 1;
+  if (o.max_pairs > 0 && pairs.size() > static_cast<std::size_t>(o.max_pairs))
+    pairs.resize(static_cast<std::size_t>(o.max_pairs));
+  const double fft_ms = fftYardstickMs();
+  std::fprintf(stderr, "revisits: %zu pairs x %zu methods; yardstick FFT128 %.2f ms\n",
+               pairs.size(), o.methods.size(), fft_ms);
+  std::unique_ptr<std::ofstream> csv;
+  if (!o.csv.empty()) {
+    csv = std::make_unique<std::ofstream>(o.csv);
+    *csv << "method,source,target,dist,rel_rot,overlap,rre,rte,converged,ms,score,"
+            "overlap_est\n";
+  }
+  const std::vector<RevisitTrial> trials = runTrials(o, folder, pairs, csv.get());
+  std::ofstream md_file;
+  if (!o.markdown.empty())
+    md_file.open(o.markdown);
+  writeReport(o.markdown.empty() ? std::cout : md_file, argc, argv, trials, o, origin,
+              fft_ms);
+  if (!o.plots.empty()) {
+    const std::string png = writePlot(o.plots, trials, o.methods);
+    if (!png.empty())
+      std::fprintf(stderr, "wrote %s\n", png.c_str());
+  }
+  return trials.empty() && !pairs.empty() ? 1 : 0;
+}
+
+} // namespace bench
+} // namespace pcl_phaser

@@ -1,0 +1,248 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ *
+ * pcl_phaser_benchmark -study revisits: the global aligners on the real revisit pairs
+ * of lidar/balm_handheld (two scans of one place taken metres apart, reference poses
+ * from LiDAR-inertial odometry), binned by the distance between the scans. It has its
+ * own options (see printRevisitsHelp()).
+ *
+ * The pairs come from pairs.txt or, with -derived-pairs, are derived from the poses of
+ * poses_T_world_lidar.txt; the reading and the derivation are header-only here so that
+ * the tests can check them without the binary.
+ */
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace pcl_phaser {
+namespace bench {
+
+/** \brief Whether the command line asks for "-study revisits". */
+bool isRevisitsStudy(int argc, char** argv);
+
+/** \brief Prints the options of the revisit study. */
+void printRevisitsHelp(const char* program);
+
+/** \brief Time of one 128^3 real-to-complex FFTW transform (fftw_plan_dft_r2c_3d,
+ * FFTW_MEASURE, one thread): the median of 15 executions, in ms. The wisdom gathered
+ * while planning is forgotten afterwards, so later FFTW_ESTIMATE plans of the library
+ * are the same as in a run without the yardstick. */
+double fftYardstickMs();
+
+/** \brief Runs the revisit study: every pair of the pairs file (or derived from the
+ * poses) by every method, markdown tables per method and distance bin, optionally a
+ * CSV and a plot.
+ * \return the process exit status (0 also when the data folder is absent) */
+int runRevisitsStudy(int argc, char** argv);
+
+/** \brief One revisit pair: scan file names, the distance between the scans (m), their
+ * relative rotation (deg), the overlap proxy of pairs.txt (NaN for derived pairs). */
+struct RevisitPair {
+  std::string source, target;
+  double dist = 0.0, rel_rot = 0.0, overlap = 0.0;
+  Eigen::Matrix4d truth = Eigen::Matrix4d::Identity(); ///< T_target_source
+};
+
+/** \brief One line of poses_T_world_lidar.txt: scan full<index>.pcd, T_world_lidar. */
+struct ScanPose {
+  int index = 0;
+  Eigen::Matrix4d world_lidar = Eigen::Matrix4d::Identity();
+};
+
+/** \brief Calls parse(line) on each line of a text file but blank and '#' lines; false
+ * with \a error ("cannot read", or "FILE:LINE: expected ...") if one does not parse. */
+template <typename Parse>
+bool readRecords(const std::string& path, Parse parse, const std::string& expected,
+                 std::string& error)
+{
+  std::ifstream in(path);
+  if (!in) {
+    error = "cannot read " + path;
+    return false;
+  }
+  int number = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++number;
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#')
+      continue;
+    if (!parse(line)) {
+      error = path + ":" + std::to_string(number) + ": expected " + expected;
+      return false;
+    }
+  }
+  return true;
+}
+
+/** \brief Parses "source target dist rot overlap" and 16 numbers; false if malformed.
+ */
+inline bool parsePairLine(const std::string& line, RevisitPair& pair)
+{
+  std::istringstream in(line);
+  if (!(in >> pair.source >> pair.target >> pair.dist >> pair.rel_rot >> pair.overlap))
+    return false;
+  for (int i = 0; i < 16; ++i)
+    if (!(in >> pair.truth(i / 4, i % 4)))
+      return false;
+  std::string rest;
+  return !(in >> rest) && pair.truth.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1));
+}
+
+/** \brief Appends the pairs of a pairs file; false with \a error on a malformed line.
+ */
+inline bool readPairs(const std::string& path, std::vector<RevisitPair>& pairs,
+                      std::string& error)
+{
+  auto parse = [&](const std::string& line) {
+    RevisitPair pair;
+    if (!parsePairLine(line, pair))
+      return false;
+    pairs.push_back(pair);
+    return true;
+  };
+  return readRecords(path, parse,
+                     "'source target dist_m rel_rot_deg overlap' and 16 numbers of a "
+                     "4x4 pose",
+                     error);
+}
+
+/** \brief Appends the poses of a poses file ("scan_index timestamp" and the 12 numbers
+ * of a row-major 3x4 T_world_lidar); false with \a error on a malformed line. */
+inline bool readScanPoses(const std::string& path, std::vector<ScanPose>& poses,
+                          std::string& error)
+{
+  auto parse = [&](const std::string& line) {
+    std::istringstream in(line);
+    ScanPose pose;
+    double timestamp = 0.0;
+    if (!(in >> pose.index >> timestamp) || pose.index < 0)
+      return false;
+    for (int i = 0; i < 12; ++i)
+      if (!(in >> pose.world_lidar(i / 4, i % 4)))
+        return false;
+    std::string rest;
+    if (in >> rest)
+      return false;
+    poses.push_back(pose);
+    return true;
+  };
+  return readRecords(path, parse, "'scan_index timestamp' and 12 numbers of a 3x4 pose",
+                     error);
+}
+
+constexpr int kDerivedMinGap = 18;      ///< |source - target| scan index, a revisit
+constexpr std::size_t kDerivedBins = 4; ///< [3, 5), [5, 10), [10, 15), [15, 21] m
+constexpr std::array<double, kDerivedBins + 1> kDerivedEdges = {3, 5, 10, 15, 21};
+
+/** \brief The derivation bin of a distance (the last bin is closed), or -1. */
+inline int derivedBin(double dist)
+{
+  for (std::size_t b = 0; b < kDerivedBins; ++b)
+    if (dist >= kDerivedEdges[b] &&
+        (dist < kDerivedEdges[b + 1] ||
+         (b + 1 == kDerivedBins && dist <= kDerivedEdges[b + 1])))
+      return static_cast<int>(b);
+  return -1;
+}
+
+/** \brief A uniform integer in [0, n), n >= 1, without modulo: the 32 random bits of
+ * an mt19937 draw masked to the bits of n - 1, rejected until below n. Unlike
+ * std::uniform_int_distribution the same on every standard library. */
+inline std::uint32_t uniformBelow(std::mt19937& rng, std::uint32_t n)
+{
+  std::uint32_t mask = n - 1;
+  for (int shift = 1; shift < 32; shift <<= 1)
+    mask |= mask >> shift;
+  for (;;) {
+    const auto draw = static_cast<std::uint32_t>(rng()) & mask;
+    if (draw < n)
+      return draw;
+  }
+}
+
+/** \brief Fisher-Yates shuffle with uniformBelow() (std::shuffle's sequence is not
+ * specified by the standard). */
+template <typename T>
+void fisherYates(std::vector<T>& items, std::mt19937& rng)
+{
+  for (std::size_t i = items.size(); i > 1; --i)
+    std::swap(items[i - 1], items[uniformBelow(rng, static_cast<std::uint32_t>(i))]);
+}
+
+/** \brief How many ordered candidates each derivation bin had, and how many were taken.
+ */
+struct DerivedCounts {
+  std::array<int, kDerivedBins> candidates{}, chosen{};
+};
+
+/** \brief Held-out revisit pairs from the poses: ordered pairs (source i, target j)
+ * with |i - j| >= kDerivedMinGap and a distance in a derivation bin, neither (i, j) nor
+ * (j, i) in \a listed (compared by file name), shuffled by fisherYates() with
+ * std::mt19937(seed), then the first \a per_bin of each bin, skipping the reverse of a
+ * pair already taken. T_target_source = T_world_target^-1 * T_world_source. */
+inline std::vector<RevisitPair> derivePairs(const std::vector<ScanPose>& poses,
+                                            const std::vector<RevisitPair>& listed,
+                                            int per_bin, unsigned seed,
+                                            DerivedCounts* counts = nullptr)
+{
+  auto file = [](const std::string& name) {
+    return std::filesystem::path(name).filename().string();
+  };
+  std::set<std::pair<std::string, std::string>> taken;
+  for (const RevisitPair& p : listed) {
+    taken.insert({file(p.source), file(p.target)});
+    taken.insert({file(p.target), file(p.source)});
+  }
+  DerivedCounts count;
+  std::vector<RevisitPair> candidates, chosen;
+  for (const ScanPose& source : poses)
+    for (const ScanPose& target : poses) {
+      RevisitPair p;
+      p.source = "full" + std::to_string(source.index) + ".pcd";
+      p.target = "full" + std::to_string(target.index) + ".pcd";
+      p.truth = target.world_lidar.inverse() * source.world_lidar;
+      p.dist = p.truth.topRightCorner<3, 1>().norm();
+      const int bin = derivedBin(p.dist);
+      if (std::abs(source.index - target.index) < kDerivedMinGap || bin < 0 ||
+          taken.count({p.source, p.target}))
+        continue;
+      const double cosine = (p.truth.topLeftCorner<3, 3>().trace() - 1.0) / 2.0;
+      p.rel_rot = std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / EIGEN_PI;
+      p.overlap = std::numeric_limits<double>::quiet_NaN();
+      ++count.candidates[bin];
+      candidates.push_back(p);
+    }
+  std::mt19937 rng(seed);
+  fisherYates(candidates, rng);
+  for (const RevisitPair& p : candidates) {
+    const int bin = derivedBin(p.dist);
+    if (count.chosen[bin] >= per_bin || taken.count({p.source, p.target}))
+      continue;
+    ++count.chosen[bin];
+    taken.insert({p.target, p.source});
+    chosen.push_back(p);
+  }
+  if (counts)
+    *counts = count;
+  return chosen;
+}
+
+} // namespace bench
+} // namespace pcl_phaser
