@@ -1,0 +1,167 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ */
+#pragma once
+
+// Internal to the engine (not installed): the target model, the state of one estimate
+// and the stages pipeline.cpp and pipeline_stages.cpp share.
+#include <pcl_phaser/core/cloud_signals.h>
+#include <pcl_phaser/core/error.h>
+#include <pcl_phaser/core/peak_neighbourhood.h>
+#include <pcl_phaser/core/pipeline.h>
+#include <pcl_phaser/core/so3_correlation.h>
+#include <pcl_phaser/core/so3_refinement.h>
+#include <pcl_phaser/core/spatial_correlation.h>
+#include <pcl_phaser/core/spherical_harmonics.h>
+#include <pcl_phaser/core/spherical_sampling.h>
+#include <pcl_phaser/core/surface_orientation.h>
+#include <pcl_phaser/core/verification.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+namespace pcl_phaser {
+
+class TargetModel {
+public:
+  PhaserParameters params;
+  std::size_t channels = 0; ///< number of fused channels beyond the geometry
+  SphericalSpectrum spherical;
+  SphericalSupport spherical_support; ///< for the normalised refinement
+  double spherical_norm = 0.0;
+  SphericalSpectrum orientation; ///< surface-orientation histogram (may be empty)
+  /** Binary occupancy on the whole target, padded (any shift up to half the extent),
+   *  and on its inner region with little padding (the residual of later passes). */
+  SpatialSpectrum coarse, fine;
+  double coarse_energy = 0.0, fine_energy = 0.0; ///< spectrumEnergy of coarse and fine
+  PointIndex index;                              ///< target points, for verifyPose
+  double thickness = 0.0; ///< SurfacePatches::thickness of the target
+  FreeSpace free_space; ///< what the target's sensor saw through (sensor-centred only)
+  /** Evenly spaced target points with their orientation weights: the reverse
+   *  free-space test, against what the source's sensor saw (sensor-centred only). */
+  Eigen::Matrix3Xd samples;
+  Eigen::VectorXd sample_weights;
+  double preparation_ms = 0.0;
+};
+
+namespace detail {
+
+using Clock = std::chrono::steady_clock;
+
+/** Rotation peaks closer than this are one hypothesis (a few grid cells at B = 64). */
+constexpr double kHypothesisSeparation = 10.0 * M_PI / 180.0;
+
+/** Verification radius, in coarse voxels. */
+constexpr double kVerificationVoxels = 0.5;
+
+/** Direction cells of the free-space test (about 1.4 deg) and its margin in coarse
+ *  voxels. */
+constexpr int kFreeSpaceBandwidth = 128;
+
+constexpr double kFreeSpaceMargin = 1.0;
+
+/** Inlier share one hypothesis at least must reach for verification to rank them. */
+constexpr double kMinRankingInliers = 0.1;
+
+/** Largest surface thickness, in verification radii, at which poses are verified. */
+constexpr double kMaxThickness = 1.0 / 3.0;
+
+/** Weight of a free-space violation against an inlier in rank(). */
+constexpr double kViolationWeight = 3.0;
+
+/** Saturation of the occupancy grids: a voxel with a fraction of a point's weight is
+ *  already almost full, so occupancy is binary and the near-sensor density (each scan
+ *  is densest around its own sensor) does not vote for stacking the sensors. */
+constexpr double kOccupancySaturation = 0.05;
+
+/** Patches of the orientation histogram, in coarse voxels. */
+constexpr double kPatchVoxels = 1.0;
+
+/** A pose and how well it verifies; with the rotation grid of the last accepted
+ *  re-projection pass (its peak is near the identity), if one was accepted. */
+struct Pose {
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+  PoseVerification v;
+  std::shared_ptr<const So3CorrelationGrid> grid;
+  So3GridIndex peak{};
+  bool verifiable = false; ///< hypotheses and passes are ranked by verification
+};
+
+/** Everything one estimate needs about the source. */
+struct SourceContext {
+  const TargetModel& target;
+  const Eigen::Matrix3Xd& points;
+  const ChannelValues& channels;
+  const PhaserParameters& p;
+  VerificationSamples samples; ///< evenly spaced source points for verifyPose
+  SurfacePatches patches;      ///< planar patches of the source (coarse voxels)
+  FreeSpace free_space;        ///< what the source's sensor saw through
+};
+
+double msSince(Clock::time_point start);
+
+/** The source's spherical spectrum, timed; with its support when \a support is given.
+ */
+SphericalSpectrum sourceSpectrum(const Eigen::Matrix3Xd& points,
+                                 const ChannelValues& channels,
+                                 const PhaserParameters& p, PhaserEstimate& e,
+                                 SphericalSupport* support = nullptr);
+
+/** The global search: C on the SO(3) grid. */
+So3CorrelationGrid correlateRotation(const TargetModel& target,
+                                     const SphericalSpectrum& H,
+                                     const PhaserParameters& p, PhaserEstimate& e);
+
+/** Newton refinement of \a R on C, timed; with PhaserParameters::normalized_refinement
+ *  then on the energy-normalised correlation (see refineRotation: plain C leans towards
+ *  equal sensor tilt) near that maximum, with the supports given. Returns the exact C
+ *  at the result through \a value. */
+Eigen::Matrix3d refine(const TargetModel& target, const SphericalSpectrum& H,
+                       const SphericalSupport& support, const Eigen::Matrix3d& R,
+                       const PhaserParameters& p, double& value, PhaserEstimate& e);
+
+/** Correlation peak over the norms of the two grids (0 when one is empty). */
+double normalizedPeak(double peak, double energy_product);
+
+/** Grid samples around a peak as rotations of the final estimate: each sample's offset
+ *  from the peak, delta_i = R_i R_peak^T, applied on the left of \a estimate (so the
+ *  spread is expressed in the target frame), with weights from the correlation above
+ * the lowest value of the block. */
+void rotationSamples(const So3CorrelationGrid& C, const So3GridIndex& peak,
+                     const Eigen::Matrix3d& estimate, PhaserEstimate& e);
+
+/** Binary occupancy spectrum of \a points on \a grid. */
+SpatialSpectrum occupancySpectrum(const SpatialGrid& grid,
+                                  const Eigen::Matrix3Xd& points, int num_threads);
+
+double volumeAt(const SpatialVolume& v, const Eigen::Vector3i& i);
+
+/** Translation of the (already rotated) \a points onto \a target by the occupancy
+ *  correlation, whitened by \a whitening (correlateSpectraWhitened), sub-voxel peak.
+ *  When \a volume is given (the final stage), the plain correlation volume is kept for
+ *  the covariance and the peak's sidelobe score is computed. */
+SpatialCorrelationResult shiftOf(const SpatialSpectrum& target,
+                                 const Eigen::Matrix3Xd& points, double whitening,
+                                 const PhaserParameters& p, PhaserEstimate& e,
+                                 SpatialVolume* volume = nullptr,
+                                 double* source_energy = nullptr);
+
+/** Pass 1: every hypothesis through the coarse translation search and verification;
+ *  see pipeline_stages.cpp for the ranking. */
+Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_norm,
+                  PhaserEstimate& e);
+
+/** Later passes from the viewpoint of the estimate, kept while they verify no worse. */
+Pose reprojectionPasses(const SourceContext& s, Pose pose, PhaserEstimate& e);
+
+/** The final refinement, shift, uncertainty and verification decision, into \a e. */
+void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e);
+
+} // namespace detail
+} // namespace pcl_phaser

@@ -1,0 +1,245 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ */
+#include "pipeline_internal.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pcl_phaser {
+namespace detail {
+
+namespace {
+
+PoseVerification verify(const SourceContext& s, const Eigen::Matrix3d& R,
+                        const Eigen::Vector3d& t, PhaserEstimate& e)
+{
+  const auto start = Clock::now();
+  PoseVerification v = verifyPose(s.target.index, s.samples, R, t, s.p.num_threads,
+                                  s.p.sensor_centred ? &s.target.free_space : nullptr);
+  // The other way: target samples in space the source's sensor saw through.
+  if (s.p.sensor_centred)
+    v.reverse_free_space_violation =
+        freeSpaceViolation(s.free_space, s.target.samples, s.target.sample_weights,
+                           R.transpose(), -(R.transpose() * t), s.p.num_threads);
+  e.verification_ms += msSince(start);
+  return v;
+}
+
+/** Rotation hypotheses: the distinct peaks of the range correlation \a C and of the
+ *  orientation histograms' correlation. */
+std::vector<RotationHypothesis> rotationHypotheses(const SourceContext& s,
+                                                   const So3CorrelationGrid& C,
+                                                   double h_norm, PhaserEstimate& e)
+{
+  const PhaserParameters& p = s.p;
+  std::vector<So3GridIndex> peaks;
+  if (p.rotation_candidates > 1)
+    peaks =
+        distinctPeaks(C, p.rotation_candidates, kHypothesisSeparation, p.num_threads);
+  if (peaks.empty())
+    peaks.push_back(C.argmax(p.num_threads));
+  std::vector<RotationHypothesis> out;
+  for (const So3GridIndex& peak : peaks) {
+    RotationHypothesis h;
+    h.rotation = rotationFromEuler(gridEuler(peak, p.bandwidth));
+    h.rotation_score = C(peak) / (s.target.spherical_norm * h_norm);
+    out.push_back(h);
+  }
+  if (!p.sensor_centred || p.orientation_candidates == 0 ||
+      s.target.orientation.size() == 0)
+    return out;
+  const auto t = Clock::now();
+  const SphericalSpectrum O =
+      orientationSpectrum(s.patches, p.orientation_bandwidth, p.num_threads);
+  const So3CorrelationGrid Co = So3Correlator::instance(p.orientation_bandwidth)
+                                    ->correlate(s.target.orientation, O, p.num_threads);
+  const double norm =
+      std::sqrt(spectrumSquaredNorm(s.target.orientation) * spectrumSquaredNorm(O));
+  for (const So3GridIndex& peak : distinctPeaks(Co, p.orientation_candidates,
+                                                kHypothesisSeparation, p.num_threads)) {
+    RotationHypothesis h;
+    h.rotation = rotationFromEuler(gridEuler(peak, p.orientation_bandwidth));
+    h.rotation_score = norm > 0.0 ? Co(peak) / norm : 0.0;
+    h.from_orientation = true;
+    out.push_back(h);
+  }
+  e.orientation_ms += msSince(t);
+  return out;
+}
+
+/** How a verified pose ranks: its closeness-weighted inlier share less a multiple of
+ *  its free-space violations. A sample in space the target saw through is strong
+ *  evidence against the pose; a sample without a target neighbour is weak (occlusion,
+ *  partial overlap), hence the factor. */
+double rank(const PoseVerification& v)
+{
+  return v.score - kViolationWeight *
+                       std::max(v.free_space_violation, v.reverse_free_space_violation);
+}
+
+/** Whether a refined pose replaces the current one: when the poses are ranked by
+ *  verification, if it ranks no worse; otherwise always (the passes' own stop rule
+ *  decides). */
+bool accept(const Pose& next, const Pose& current)
+{
+  return !current.verifiable || rank(next.v) >= rank(current.v);
+}
+
+/** Whether verification can tell poses apart: about sensor origins, with surfaces
+ *  thinner than a third of the verification radius in both clouds (noise thicker than
+ *  that lets wrong poses put as many samples within the radius as the right one). */
+bool canVerify(const SourceContext& s)
+{
+  const double limit = kMaxThickness * s.target.index.radius();
+  return s.p.sensor_centred && s.patches.thickness <= limit &&
+         s.target.thickness <= limit;
+}
+
+} // namespace
+
+/** Pass 1: every hypothesis through the coarse translation search and verification.
+ *  About sensor origins, when at least one hypothesis puts kMinRankingInliers of the
+ *  samples on the target, the best verified one wins. Otherwise (object scans, or
+ *  clouds so noisy or sparse that no pose verifies, e.g. 1 m of noise at 40 dB PSNR)
+ *  verification cannot rank them: the range peak whose rotated source overlaps the
+ *  target most wins, as the orientation histograms are as unreliable as the normals. */
+Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_norm,
+                  PhaserEstimate& e)
+{
+  e.hypotheses = rotationHypotheses(s, C, h_norm, e);
+  std::vector<PoseVerification> v(e.hypotheses.size());
+  bool verifiable = false;
+  for (std::size_t k = 0; k < e.hypotheses.size(); ++k) {
+    RotationHypothesis& h = e.hypotheses[k];
+    const SpatialCorrelationResult shift =
+        shiftOf(s.target.coarse, h.rotation * s.points, s.p.whitening, s.p, e);
+    h.translation = shift.shift;
+    h.overlap = shift.peak_value;
+    v[k] = verify(s, h.rotation, h.translation, e);
+    h.inlier_fraction = v[k].inlier_fraction;
+    h.verification_score = v[k].score;
+    h.free_space_violation = v[k].free_space_violation;
+    verifiable = verifiable || v[k].inlier_fraction >= kMinRankingInliers;
+  }
+  verifiable = verifiable && canVerify(s);
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < e.hypotheses.size(); ++k) {
+    const RotationHypothesis& h = e.hypotheses[k];
+    const bool better =
+        verifiable ? rank(v[k]) > rank(v[best])
+                   : !h.from_orientation && h.overlap > e.hypotheses[best].overlap;
+    if (better)
+      best = k;
+  }
+  e.chosen_hypothesis = static_cast<int>(best);
+  e.passes = 1;
+  Pose pose{e.hypotheses[best].rotation, e.hypotheses[best].translation, v[best]};
+  pose.verifiable = verifiable;
+  return pose;
+}
+
+/** Later passes: the source, moved by the estimate, is seen from the target's centre,
+ *  so its range function no longer suffers the parallax of the source's viewpoint; the
+ *  residual rotation (grid argmax) and a fine-grid shift are composed with the
+ *  estimate, kept only while verification does not get worse. A pass whose shift
+ *  update is below a quarter of a fine voxel started from the right viewpoint: stop. */
+Pose reprojectionPasses(const SourceContext& s, Pose pose, PhaserEstimate& e)
+{
+  const double settled = 0.25 * s.target.fine.grid.voxel_size;
+  for (int pass = 1; pass < s.p.passes; ++pass) {
+    const SphericalSpectrum H =
+        sourceSpectrum((pose.R * s.points).colwise() + pose.t, s.channels, s.p, e);
+    auto C =
+        std::make_shared<So3CorrelationGrid>(correlateRotation(s.target, H, s.p, e));
+    Pose next;
+    next.verifiable = pose.verifiable;
+    next.peak = C->argmax(s.p.num_threads);
+    next.grid = C;
+    const Eigen::Matrix3d dR = rotationFromEuler(gridEuler(next.peak, s.p.bandwidth));
+    next.R = dR * pose.R;
+    next.t = dR * pose.t;
+    const Eigen::Vector3d shift =
+        shiftOf(s.target.fine, (next.R * s.points).colwise() + next.t, 0.0, s.p, e)
+            .shift;
+    next.t += shift;
+    next.v = verify(s, next.R, next.t, e);
+    if (!accept(next, pose))
+      break;
+    pose = next;
+    e.passes = pass + 1;
+    if (shift.norm() < settled)
+      break;
+  }
+  return pose;
+}
+
+/** Finally the residual rotation from the final viewpoint, Newton-refined from the
+ *  identity, and the matching shift, kept when verification does not get worse. The
+ *  spread of the last rotation grid around its peak and of the last 3-D correlation
+ *  around its peak describe the uncertainty. */
+void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
+{
+  const TargetModel& target = s.target;
+  const PhaserParameters& p = s.p;
+  SphericalSupport support;
+  const SphericalSpectrum H =
+      sourceSpectrum((pose.R * s.points).colwise() + pose.t, s.channels, p, e,
+                     p.normalized_refinement ? &support : nullptr);
+  // After an accepted pass the residual is within the grid spacing: refine from the
+  // identity; else search the grid from this viewpoint first.
+  Eigen::Matrix3d start = Eigen::Matrix3d::Identity();
+  if (!pose.grid) {
+    pose.grid =
+        std::make_shared<So3CorrelationGrid>(correlateRotation(target, H, p, e));
+    pose.peak = pose.grid->argmax(p.num_threads);
+    start = rotationFromEuler(gridEuler(pose.peak, p.bandwidth));
+  }
+  const So3CorrelationGrid& C = *pose.grid;
+  const So3GridIndex peak = pose.peak;
+  double value = 0.0;
+  const Eigen::Matrix3d dR = refine(target, H, support, start, p, value, e);
+  const bool single = p.passes == 1;
+  const SpatialSpectrum& grid = single ? target.coarse : target.fine;
+  const double grid_energy = single ? target.coarse_energy : target.fine_energy;
+  Pose next;
+  next.verifiable = pose.verifiable;
+  next.R = dR * pose.R;
+  next.t = dR * pose.t;
+  SpatialVolume volume;
+  double energy = 0.0;
+  const SpatialCorrelationResult shift =
+      shiftOf(grid, (next.R * s.points).colwise() + next.t, single ? p.whitening : 0.0,
+              p, e, &volume, &energy);
+  next.t += shift.shift;
+  next.v = verify(s, next.R, next.t, e);
+  e.translation_score = shift.score;
+  e.normalized_overlap =
+      normalizedPeak(volume.values.empty() ? 0.0 : volumeAt(volume, shift.index),
+                     grid_energy * energy);
+  e.translation_covariance =
+      translationCovariance(volume, shift.index, grid_energy * energy);
+  rotationSamples(C, peak, dR * pose.R, e);
+  e.rotation_score =
+      value / (target.spherical_norm * std::sqrt(spectrumSquaredNorm(H)));
+  if (accept(next, pose))
+    pose = next;
+  e.rotation = pose.R;
+  e.translation = pose.t;
+  e.inlier_fraction = pose.v.inlier_fraction;
+  e.free_space_violation = pose.v.free_space_violation;
+  e.constraint = pose.v.constraint;
+  e.verification_samples = static_cast<int>(s.samples.points.cols());
+  e.verified = e.verification_samples >= kMinVerificationSamples &&
+               (!p.sensor_centred ||
+                (pose.verifiable && e.inlier_fraction >= p.min_inlier_fraction &&
+                 e.constraint >= p.min_constraint &&
+                 e.free_space_violation <= p.max_free_space_violation));
+  e.verification_score = pose.v.score;
+}
+
+} // namespace detail
+} // namespace pcl_phaser
