@@ -185,9 +185,10 @@ TEST(PhaserRegistration, ConvergenceMeansAVerifiedPose)
   phaser.setParameters(defaults);
   EXPECT_TRUE(convergesWith(
       [&](auto& p) { p.max_free_space_violation = e.free_space_violation; }));
-  if (e.free_space_violation > 0.0)
+  if (e.free_space_violation > 0.0) {
     EXPECT_FALSE(convergesWith(
         [&](auto& p) { p.max_free_space_violation = 0.99 * e.free_space_violation; }));
+  }
   // An unrelated room does not verify.
   pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> unrelated;
   unrelated.setInputSource(makeScene<pcl::PointXYZ>(6, 300));
