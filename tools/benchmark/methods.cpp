@@ -4,6 +4,10 @@
  */
 #include "methods.h"
 
+#include <pcl_phaser/cloud_io.h>
+
+#include <pcl/console/print.h>
+#include <pcl/filters/filter.h>
 #include <pcl/filters/voxel_grid.h>
 
 namespace pcl_phaser {
@@ -55,6 +59,19 @@ double elapsedMs(std::chrono::steady_clock::time_point start)
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
                                                    start)
       .count();
+}
+
+Cloud::Ptr loadFiniteScan(const std::string& path)
+{
+  auto cloud = pcl::make_shared<Cloud>();
+  std::string error;
+  if (!pcl::phaser::loadCloud(path, *cloud, &error)) {
+    pcl::console::print_error("%s\n", error.c_str());
+    return nullptr;
+  }
+  pcl::Indices kept;
+  pcl::removeNaNFromPointCloud(*cloud, *cloud, kept);
+  return cloud;
 }
 
 } // namespace bench

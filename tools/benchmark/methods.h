@@ -88,6 +88,10 @@ MethodResult runNdt(const Cloud::ConstPtr& source, const Cloud::ConstPtr& target
  * downsampling when voxel <= 0). */
 pcl::PointCloud<pcl::PointXYZ>::Ptr downsampleXYZ(const Cloud& cloud, double voxel);
 
+/** \brief A scan read with pcl::phaser::loadCloud, non-finite points removed; null (and
+ * the reason printed with PCL's console) when it cannot be read. */
+Cloud::Ptr loadFiniteScan(const std::string& path);
+
 /** \brief Milliseconds since \a start. */
 double elapsedMs(std::chrono::steady_clock::time_point start);
 

@@ -221,19 +221,6 @@ bool parseOptions(int argc, char** argv, Options& o)
   return ok;
 }
 
-Cloud::Ptr loadScan(const std::string& path)
-{
-  auto cloud = pcl::make_shared<Cloud>();
-  std::string error;
-  if (!pcl::phaser::loadCloud(path, *cloud, &error)) {
-    console::print_error("%s\n", error.c_str());
-    return nullptr;
-  }
-  pcl::Indices kept;
-  pcl::removeNaNFromPointCloud(*cloud, *cloud, kept);
-  return cloud;
-}
-
 /** Runs the requested methods on one (source, target, truth) and records the trials. */
 class Runner {
 public:
@@ -334,7 +321,7 @@ std::map<std::string, Cloud::Ptr> loadScans(const Options& o)
   std::map<std::string, Cloud::Ptr> scans;
   for (const Scan& s : kScans)
     if (std::find(o.scans.begin(), o.scans.end(), s.name) != o.scans.end())
-      if (auto cloud = loadScan(o.data + "/" + s.file))
+      if (auto cloud = loadFiniteScan(o.data + "/" + s.file))
         scans[s.name] = cloud;
   return scans;
 }
@@ -376,8 +363,8 @@ void randomPoses(const Options& o, const std::map<std::string, Cloud::Ptr>& scan
 void realPairs(const Options& o, Runner& runner)
 {
   for (const Pair& p : kPairs) {
-    const Cloud::Ptr source = loadScan(o.data + "/" + p.source);
-    const Cloud::Ptr target = loadScan(o.data + "/" + p.target);
+    const Cloud::Ptr source = loadFiniteScan(o.data + "/" + p.source);
+    const Cloud::Ptr target = loadFiniteScan(o.data + "/" + p.target);
     Eigen::Matrix4d truth = Eigen::Matrix4d::Identity();
     std::string error;
     if (!p.truth_file.empty()) {

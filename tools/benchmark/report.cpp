@@ -18,15 +18,6 @@ namespace bench {
 
 namespace {
 
-std::string format(const char* fmt, double value)
-{
-  if (!std::isfinite(value))
-    return "-";
-  char text[64];
-  std::snprintf(text, sizeof(text), fmt, value);
-  return text;
-}
-
 struct Summary {
   int n = 0, ok = 0;
   double median_rre = NAN, median_rte = NAN, median_ms = NAN, p90_ms = NAN;
@@ -117,9 +108,10 @@ void writeSummary(std::ostream& out, const std::vector<Trial>& trials, bool by_s
         continue;
       const Summary s = summarise(it->second);
       out << "| " << name << " | " << m << " | " << s.n << " | "
-          << format("%.0f %%", 100.0 * s.ok / s.n) << " | "
-          << format("%.2f", s.median_rre) << " | " << format("%.3f", s.median_rte)
-          << " | " << format("%.0f", s.median_ms) << " | " << format("%.0f", s.p90_ms)
+          << formatValue("%.0f %%", 100.0 * s.ok / s.n) << " | "
+          << formatValue("%.2f", s.median_rre) << " | "
+          << formatValue("%.3f", s.median_rte) << " | "
+          << formatValue("%.0f", s.median_ms) << " | " << formatValue("%.0f", s.p90_ms)
           << " |\n";
     }
   }
@@ -156,13 +148,15 @@ void writeNeesSummary(std::ostream& out, const std::vector<Trial>& trials)
     }
     const double n = converged;
     out << "| " << bandwidth << " | " << group.size() << " | " << converged << " | "
-        << format("%.2f", sum_nees / n) << " | " << format("%.2f", median(nees))
-        << " | " << format("%.0f %%", 100.0 * inside / n) << " | "
-        << format("%.2f", sum_rot / n) << " / " << format("%.2f", sum_trans / n)
-        << " | " << format("%.3f", std::sqrt(sum_rre2 / n)) << " | "
-        << format("%.3f", std::sqrt(sum_rte2 / n)) << " | "
-        << format("%.3f", median(sigma_rot)) << " | "
-        << format("%.3f", median(sigma_trans)) << " |\n";
+        << formatValue("%.2f", sum_nees / n) << " | "
+        << formatValue("%.2f", median(nees)) << " | "
+        << formatValue("%.0f %%", 100.0 * inside / n) << " | "
+        << formatValue("%.2f", sum_rot / n) << " / "
+        << formatValue("%.2f", sum_trans / n) << " | "
+        << formatValue("%.3f", std::sqrt(sum_rre2 / n)) << " | "
+        << formatValue("%.3f", std::sqrt(sum_rte2 / n)) << " | "
+        << formatValue("%.3f", median(sigma_rot)) << " | "
+        << formatValue("%.3f", median(sigma_trans)) << " |\n";
   }
 }
 
@@ -184,12 +178,12 @@ void writeDetectionSummary(std::ostream& out, const std::vector<Trial>& trials,
       }
       out << "| " << method << " | " << name << " | " << correct << " | " << wrong
           << " | " << tp << " | " << fp << " | "
-          << format("%.3f", tp + fp ? double(tp) / (tp + fp) : NAN) << " | "
-          << format("%.3f", correct ? double(tp) / correct : NAN) << " |\n";
+          << formatValue("%.3f", tp + fp ? double(tp) / (tp + fp) : NAN) << " | "
+          << formatValue("%.3f", correct ? double(tp) / correct : NAN) << " |\n";
     };
     row("hasConverged()", [](const Trial& t) { return t.converged; });
     for (double threshold : thresholds)
-      row(format("score >= %g", threshold),
+      row(formatValue("score >= %g", threshold),
           [threshold](const Trial& t) { return t.score >= threshold; });
   }
 }
@@ -225,7 +219,7 @@ std::vector<std::string> writePlots(const std::string& dir,
         const double x = sweep == "noise" ? value : 100.0 * value;
         // gnuplot skips NaN (its "missing" setting breaks columnheader titles)
         dat << x << " " << 100.0 * s.ok / s.n << " "
-            << (std::isfinite(s.median_rre) ? format("%g", s.median_rre) : "NaN")
+            << (std::isfinite(s.median_rre) ? formatValue("%g", s.median_rre) : "NaN")
             << "\n";
       }
       dat << "\n\n";
@@ -251,6 +245,15 @@ std::vector<std::string> writePlots(const std::string& dir,
       pngs.push_back(base + ".png");
   }
   return pngs;
+}
+
+std::string formatValue(const char* fmt, double value)
+{
+  if (!std::isfinite(value))
+    return "-";
+  char text[64];
+  std::snprintf(text, sizeof(text), fmt, value);
+  return text;
 }
 
 } // namespace bench

@@ -57,5 +57,8 @@ void writeDetectionSummary(std::ostream& out, const std::vector<Trial>& trials,
 std::vector<std::string> writePlots(const std::string& dir,
                                     const std::vector<Trial>& trials);
 
+/** \brief \a value printed with the printf format \a fmt, or "-" when not finite. */
+std::string formatValue(const char* fmt, double value);
+
 } // namespace bench
 } // namespace pcl_phaser

@@ -9,18 +9,17 @@
  * times in units of one 128^3 FFT. With -derived-pairs the pairs are derived from
  * poses_T_world_lidar.txt instead (derivePairs() in revisits.h).
  */
+#include "../fft_yardstick.h"
 #include "methods.h"
 #include "protocol.h"
+#include "report.h"
 #include "revisits.h"
-
-#include "../fft_yardstick.h"
 
 #include <pcl_phaser/cloud_io.h>
 
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 #include <pcl/filters/filter.h>
-
 
 #include <algorithm>
 #include <cmath>
@@ -177,20 +176,6 @@ bool loadPairs(const RevisitOptions& o, const std::string& pairs_file,
   return true;
 }
 
-/** A scan with its finite points only (as the compare study reads scans), or null. */
-Cloud::ConstPtr loadFiniteScan(const std::string& path)
-{
-  auto cloud = pcl::make_shared<Cloud>();
-  std::string error;
-  if (!pcl::phaser::loadCloud(path, *cloud, &error)) {
-    console::print_error("%s\n", error.c_str());
-    return nullptr;
-  }
-  pcl::Indices kept;
-  pcl::removeNaNFromPointCloud(*cloud, *cloud, kept);
-  return cloud;
-}
-
 void writeCsvRow(std::ostream& out, const RevisitTrial& t)
 {
   char line[512];
@@ -249,22 +234,13 @@ std::vector<RevisitTrial> runTrials(const RevisitOptions& o, const std::string& 
   return trials;
 }
 
-std::string format(const char* fmt, double value)
-{
-  if (!std::isfinite(value))
-    return "-";
-  char text[64];
-  std::snprintf(text, sizeof(text), fmt, value);
-  return text;
-}
-
 /** "k / n (p %)", "-" when n is 0. */
 std::string countOf(int k, int n)
 {
   if (n == 0)
     return "-";
   return std::to_string(k) + " / " + std::to_string(n) + " (" +
-         format("%.0f %%", 100.0 * k / n) + ")";
+         formatValue("%.0f %%", 100.0 * k / n) + ")";
 }
 
 struct BinSummary {
@@ -310,11 +286,12 @@ void writeTable(std::ostream& out, const std::vector<RevisitTrial>& trials,
     for (const Bin& bin : bins()) {
       const BinSummary s = summarise(trials, method, bin);
       out << "| " << method << " | " << bin.label << " | " << s.n << " | "
-          << format("%.0f %%", s.n ? 100.0 * s.ok_a / s.n : NAN) << " | "
-          << format("%.0f %%", s.n ? 100.0 * s.ok_b / s.n : NAN) << " | "
-          << format("%.2f", s.median_rre) << " | " << format("%.3f", s.median_rte)
-          << " | " << format("%.0f", s.median_ms) << " | "
-          << format("%.1f", s.median_ms / fft_ms) << " | "
+          << formatValue("%.0f %%", s.n ? 100.0 * s.ok_a / s.n : NAN) << " | "
+          << formatValue("%.0f %%", s.n ? 100.0 * s.ok_b / s.n : NAN) << " | "
+          << formatValue("%.2f", s.median_rre) << " | "
+          << formatValue("%.3f", s.median_rte) << " | "
+          << formatValue("%.0f", s.median_ms) << " | "
+          << formatValue("%.1f", s.median_ms / fft_ms) << " | "
           << countOf(s.converged_failures, s.n - s.ok_a) << " | "
           << countOf(s.converged_successes, s.ok_a) << " |\n";
     }
@@ -334,8 +311,9 @@ std::string writePlot(const std::string& dir, const std::vector<RevisitTrial>& t
       const BinSummary s = summarise(trials, method, bins()[b]);
       // gnuplot skips NaN (empty bins)
       dat << b << " \"" << bins()[b].label << "\" "
-          << (s.n ? format("%g", 100.0 * s.ok_a / s.n) : "NaN") << " "
-          << (s.n ? format("%g", 100.0 * s.ok_b / s.n) : "NaN") << " " << s.n << "\n";
+          << (s.n ? formatValue("%g", 100.0 * s.ok_a / s.n) : "NaN") << " "
+          << (s.n ? formatValue("%g", 100.0 * s.ok_b / s.n) : "NaN") << " " << s.n
+          << "\n";
     }
     dat << "\n\n";
   }
@@ -374,7 +352,7 @@ void writeReport(std::ostream& md, int argc, char** argv,
      << " m. Median RRE / RTE over the successes @2 m; time over all trials. False "
         "accepts: failures @2 m that the method reported as converged.\n\n"
      << "Yardstick: one 128^3 real-to-complex FFT (FFTW_MEASURE, 1 thread) = "
-     << format("%.2f", fft_ms) << " ms (FFT128).\n\n";
+     << formatValue("%.2f", fft_ms) << " ms (FFT128).\n\n";
   writeTable(md, trials, o.methods, fft_ms);
 }
 
