@@ -10,8 +10,8 @@
  *                              [-range_only] [-plain]
  * -range_only switches the intensity channel off, so the two runs show what fusing one
  * extra channel costs per stage; -plain refines the rotation on plain C only, not also
- * on the energy-normalised correlation (setNormalizedRefinement(false)). Timings are
- * wall-clock.
+ * on the energy-normalised correlation (PhaserParameters::normalized_refinement =
+ * false). Timings are wall-clock.
  */
 #include "fft_yardstick.h"
 #include "scan_simulator.h"
@@ -37,7 +37,7 @@ using Cloud = pcl::PointCloud<PointT>;
 
 struct Row {
   double total = 0.0;
-  pcl_phaser::PhaserEstimate estimate;
+  pcl_phaser::PhaserResult estimate;
 };
 
 /** Median (by total time) of \a reps aligns; \a cached keeps the target model between.
@@ -48,7 +48,9 @@ Row measure(const Cloud::Ptr& source, const Cloud::Ptr& target, int threads,
   std::vector<Row> rows;
   pcl::PhaserRegistration<PointT, PointT> phaser;
   phaser.setUseIntensity(!range_only);
-  phaser.setNormalizedRefinement(normalized);
+  pcl_phaser::PhaserParameters params = phaser.getParameters();
+  params.normalized_refinement = normalized;
+  phaser.setParameters(params);
   phaser.setBandwidth(bandwidth);
   phaser.setNumberOfThreads(threads);
   phaser.setInputSource(source);
@@ -64,7 +66,7 @@ Row measure(const Cloud::Ptr& source, const Cloud::Ptr& target, int threads,
     r.total = std::chrono::duration<double, std::milli>(
                   std::chrono::steady_clock::now() - start)
                   .count();
-    r.estimate = phaser.getEstimate();
+    r.estimate = phaser.getResult();
     rows.push_back(r);
   }
   std::sort(rows.begin(), rows.end(),
@@ -132,7 +134,7 @@ int main(int argc, char** argv)
     for (bool cached : {false, true}) {
       const Row r = measure(source, target, threads, cached, reps, bandwidth,
                             range_only, normalized);
-      const pcl_phaser::PhaserEstimate& e = r.estimate;
+      const pcl_phaser::PhaserResult& e = r.estimate;
       std::printf(
           "| %d | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f "
           "| %.1f | %d |\n",

@@ -131,10 +131,10 @@ int main(int argc, char** argv)
       const Eigen::Vector3d nu =
           truth.topRightCorner<3, 1>() - T.topRightCorner<3, 1>();
       std::printf("%d,%d,%d,%.3f,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e", seed, b,
-                  phaser.hasConverged() ? 1 : 0, phaser.getTranslationScore(), e.x(),
-                  e.y(), e.z(), nu.x(), nu.y(), nu.z());
+                  phaser.hasConverged() ? 1 : 0, phaser.getResult().translation_score,
+                  e.x(), e.y(), e.z(), nu.x(), nu.y(), nu.z());
       printMatrix(phaser.getRotationUncertainty().tangentCovariance());
-      printMatrix(phaser.getTranslationCovariance());
+      printMatrix(phaser.getResult().translation_covariance);
       const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
       const Eigen::Vector3d pc = R * centroid(*source, 0.0),
                             v1 = R * centroid(*source, 1.0),

@@ -46,7 +46,7 @@ const double kPi = 3.14159265358979323846;
 
 struct Result {
   Stage global, icp;
-  pcl_phaser::PhaserEstimate estimate;
+  pcl_phaser::PhaserResult estimate;
   std::size_t source_points = 0, target_points = 0;
   pcl::PointCloud<pcl::PointXYZRGB>::Ptr overlay;
   /** \brief ICP's transform when it ran and converged, else PHASER's. */
@@ -73,7 +73,7 @@ void printHelp(int, char** argv)
       "LiDAR scans), centroid, or auto (sensor when both clouds surround their "
       "origin) (default: sensor)\n"
       "    --threads T         = worker threads, 1..64 (default: %u; the demo: %d)\n",
-      d.getBandwidth(), d.getSpatialGridSize(), d.getNumberOfPasses(),
+      d.getBandwidth(), d.getParameters().spatial_grid_size, d.getParameters().passes,
       d.getNumberOfThreads(), default_demo_threads);
   print_info(
       "    -icp                = refine with point-to-plane ICP "
@@ -158,18 +158,21 @@ int compute(const pcl::PCLPointCloud2& source_blob,
   res.target_points = target->size();
 
   pcl::PhaserRegistration<PointT, PointT> phaser;
+  pcl_phaser::PhaserParameters params = phaser.getParameters();
   if (opt.bandwidth)
-    phaser.setBandwidth(opt.bandwidth);
+    params.bandwidth = opt.bandwidth;
   if (opt.grid)
-    phaser.setSpatialGridSize(opt.grid);
+    params.spatial_grid_size = opt.grid;
   if (opt.passes)
-    phaser.setNumberOfPasses(opt.passes);
+    params.passes = opt.passes;
   if (opt.threads || opt.demo)
-    phaser.setNumberOfThreads(opt.threads ? opt.threads : default_demo_threads);
-  using Center = typename pcl::PhaserRegistration<PointT, PointT>::ProjectionCenter;
-  phaser.setProjectionCenter(opt.centre == "centroid" ? Center::Centroid
+    params.num_threads =
+        static_cast<int>(opt.threads ? opt.threads : default_demo_threads);
+  using Center = pcl_phaser::ProjectionCenter;
+  params.projection_center = opt.centre == "centroid" ? Center::Centroid
                              : opt.centre == "auto"   ? Center::Automatic
-                                                      : Center::SensorOrigin);
+                                                      : Center::SensorOrigin;
+  phaser.setParameters(params);
   phaser.setInputSource(source);
   phaser.setInputTarget(target);
   print_highlight("Registering ");
@@ -177,9 +180,8 @@ int compute(const pcl::PCLPointCloud2& source_blob,
              "threads %u, centre %s) ",
              source->size(), target->size(),
              pcl::traits::has_intensity_v<PointT> ? "PointXYZI" : "PointXYZ",
-             phaser.getBandwidth(), phaser.getSpatialGridSize(),
-             phaser.getNumberOfPasses(), phaser.getNumberOfThreads(),
-             opt.centre.c_str());
+             params.bandwidth, params.spatial_grid_size, params.passes,
+             phaser.getNumberOfThreads(), opt.centre.c_str());
   TicToc tt;
   tt.tic();
   Cloud aligned;
@@ -188,7 +190,7 @@ int compute(const pcl::PCLPointCloud2& source_blob,
   res.global.ran = true;
   res.global.converged = phaser.hasConverged();
   res.global.transform = phaser.getFinalTransformation().template cast<double>();
-  res.estimate = phaser.getEstimate();
+  res.estimate = phaser.getResult();
   print_info("[done, ");
   print_value("%g", res.global.time_ms);
   print_info(" ms : %s]\n", res.global.converged ? "converged" : "NOT converged");
@@ -239,7 +241,7 @@ void printStage(const char* title, const Stage& s)
 
 void printReport(const Result& res)
 {
-  const pcl_phaser::PhaserEstimate& e = res.estimate;
+  const pcl_phaser::PhaserResult& e = res.estimate;
   printStage("PHASER", res.global);
   print_info("    rotation score %.4f, translation score %.4f, passes %d\n"
              "    verification: inliers %.3f, free-space violations %.3f, constraint "
@@ -260,7 +262,7 @@ std::string toJson(const Result& res, const Options& opt, int code, double total
 {
   json::Object o;
   if (res.global.ran) {
-    const pcl_phaser::PhaserEstimate& e = res.estimate;
+    const pcl_phaser::PhaserResult& e = res.estimate;
     o = json::stage(res.global);
     json::Object stages;
     stages.add("target", json::number(e.target_ms))

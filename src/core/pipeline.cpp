@@ -233,16 +233,19 @@ std::string validateParameters(const PhaserParameters& p)
            std::to_string(p.min_constraint);
   if (p.num_threads < 1 || p.num_threads > 64)
     return "number of threads must be in [1, 64], got " + std::to_string(p.num_threads);
+  if (!(p.min_peak_score >= 0.0))
+    return "the minimum peak score must be >= 0";
+  if (!(p.min_normalized_overlap >= 0.0 && p.min_normalized_overlap <= 1.0))
+    return "the minimum normalized overlap must be in [0, 1]";
   return {};
 }
 
+namespace detail {
+
 std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
-                                                 const PhaserParameters& params,
+                                                 const StageParameters& params,
                                                  const ChannelValues& raw_channels)
 {
-  const std::string problem = validateParameters(params);
-  if (!problem.empty())
-    throw InvalidArgument(problem);
   const auto start = Clock::now();
   const ChannelValues channels = normalizeChannels(raw_channels, points.cols());
   auto model = std::make_shared<TargetModel>();
@@ -291,37 +294,15 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
   return model;
 }
 
-double preparationTime(const TargetModel& model)
-{
-  return model.preparation_ms;
-}
+namespace {
 
-PhaserEstimate estimateTransform(const TargetModel& target,
-                                 const Eigen::Matrix3Xd& points,
-                                 const PhaserParameters& p,
-                                 const ChannelValues& raw_channels)
+/** What the verification and the orientation hypotheses need of the source. */
+SourceContext sourceContext(const TargetModel& target, const Eigen::Matrix3Xd& points,
+                            const ChannelValues& channels, const StageParameters& p,
+                            PhaserEstimate& e)
 {
-  const std::string problem = validateParameters(p);
-  if (!problem.empty())
-    throw InvalidArgument(problem);
-  const PhaserParameters& m = target.params;
-  if (m.bandwidth != p.bandwidth || m.spatial_grid_size != p.spatial_grid_size ||
-      m.voxel_size != p.voxel_size || m.passes != p.passes ||
-      m.normalized_refinement != p.normalized_refinement ||
-      m.orientation_candidates != p.orientation_candidates ||
-      m.orientation_bandwidth != p.orientation_bandwidth ||
-      m.sensor_centred != p.sensor_centred)
-    throw InvalidArgument("the target model was prepared with other parameters");
-  if (p.passes > 1 && target.fine.coefficients.empty())
-    throw InvalidArgument("the target model was prepared for a single pass");
-  if (raw_channels.size() != target.channels)
-    throw InvalidArgument("the source has " + std::to_string(raw_channels.size()) +
-                          " channels, the target " + std::to_string(target.channels));
-  const ChannelValues channels = normalizeChannels(raw_channels, points.cols());
-  PhaserEstimate e;
-  e.verification_radius = target.index.radius();
   const auto t = Clock::now();
-  SourceContext s{target, points, channels, p, {}, {}};
+  SourceContext s{target, points, channels, p, {}, {}, {}};
   s.samples.points = voxelCentroids(points, e.verification_radius);
   s.patches = surfacePatches(points, kPatchVoxels * target.coarse.grid.voxel_size,
                              Eigen::Vector3d::Zero());
@@ -332,6 +313,22 @@ PhaserEstimate estimateTransform(const TargetModel& target,
         freeSpace(points, kFreeSpaceBandwidth,
                   kFreeSpaceMargin * target.coarse.grid.voxel_size, p.num_threads);
   e.verification_ms += msSince(t);
+  return s;
+}
+
+} // namespace
+
+PhaserResult estimateCentered(const TargetModel& target, const Eigen::Matrix3Xd& points,
+                              const StageParameters& p,
+                              const ChannelValues& raw_channels)
+{
+  if (raw_channels.size() != target.channels)
+    throw InvalidArgument("the source has " + std::to_string(raw_channels.size()) +
+                          " channels, the target " + std::to_string(target.channels));
+  const ChannelValues channels = normalizeChannels(raw_channels, points.cols());
+  PhaserEstimate e;
+  e.verification_radius = target.index.radius();
+  const SourceContext s = sourceContext(target, points, channels, p, e);
   const SphericalSpectrum H = sourceSpectrum(points, channels, p, e);
   const So3CorrelationGrid C = correlateRotation(target, H, p, e);
   Pose pose = globalSearch(s, C, std::sqrt(spectrumSquaredNorm(H)), e);
@@ -340,4 +337,5 @@ PhaserEstimate estimateTransform(const TargetModel& target,
   return e;
 }
 
+} // namespace detail
 } // namespace pcl_phaser

@@ -27,9 +27,36 @@
 
 namespace pcl_phaser {
 
+/** Fewest verification samples (occupied cells of the verification radius) a source
+ *  needs for its pose to be verified: fewer cannot tell a pose from another. */
+constexpr int kMinVerificationSamples = 20;
+
+/** How far (radians, at B = 64, scaled by 64 / B) the normalized refinement may move
+ * the rotation from the maximum of plain C; the radius was chosen on the demo pairs and
+ *  the NEES study (doc/benchmarks.md section 10). */
+constexpr double kNormalizedRefinementRadius = 0.75 * M_PI / 180.0;
+
+/** The trust radius (radians) at bandwidth B: kNormalizedRefinementRadius * 64 / B. */
+inline double normalizedRefinementRadius(int bandwidth)
+{
+  return kNormalizedRefinementRadius * 64.0 / bandwidth;
+}
+
+/** The stage results share the result struct: the stages fill its centered-frame
+ *  fields, align() the caller-frame ones. */
+using PhaserEstimate = PhaserResult;
+
+/** The parameters the stages run with: the caller's, with normalized_refinement off
+ *  about centroids, and whether the clouds are seen from their sensor origins (then
+ *  hypotheses are ranked by verifyPose, including the samples in space the target saw
+ *  through, and the orientation histograms add hypotheses). */
+struct StageParameters : PhaserParameters {
+  bool sensor_centred = true;
+};
+
 class TargetModel {
 public:
-  PhaserParameters params;
+  StageParameters params;
   std::size_t channels = 0; ///< number of fused channels beyond the geometry
   SphericalSpectrum spherical;
   SphericalSupport spherical_support; ///< for the normalised refinement
@@ -98,7 +125,7 @@ struct SourceContext {
   const TargetModel& target;
   const Eigen::Matrix3Xd& points;
   const ChannelValues& channels;
-  const PhaserParameters& p;
+  const StageParameters& p;
   VerificationSamples samples; ///< evenly spaced source points for verifyPose
   SurfacePatches patches;      ///< planar patches of the source (coarse voxels)
   FreeSpace free_space;        ///< what the source's sensor saw through
@@ -162,6 +189,19 @@ Pose reprojectionPasses(const SourceContext& s, Pose pose, PhaserEstimate& e);
 
 /** The final refinement, shift, uncertainty and verification decision, into \a e. */
 void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e);
+
+/** Prepares a target whose points are relative to its projection center.
+ *  \throws InvalidArgument when the points carry no spherical signal (all at the
+ *  center, or all in one direction) */
+std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
+                                                 const StageParameters& params,
+                                                 const ChannelValues& channels);
+
+/** Registers a source (points relative to its projection center) against a target
+ *  model prepared with \a p: the stages of one estimate, in centered coordinates.
+ *  \throws InvalidArgument when the source carries no spherical signal */
+PhaserResult estimateCentered(const TargetModel& target, const Eigen::Matrix3Xd& points,
+                              const StageParameters& p, const ChannelValues& channels);
 
 } // namespace detail
 } // namespace pcl_phaser

@@ -35,7 +35,7 @@ std::vector<RotationHypothesis> rotationHypotheses(const SourceContext& s,
                                                    const So3CorrelationGrid& C,
                                                    double h_norm, PhaserEstimate& e)
 {
-  const PhaserParameters& p = s.p;
+  const StageParameters& p = s.p;
   std::vector<So3GridIndex> peaks;
   if (p.rotation_candidates > 1)
     peaks =
@@ -184,7 +184,7 @@ Pose reprojectionPasses(const SourceContext& s, Pose pose, PhaserEstimate& e)
 void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
 {
   const TargetModel& target = s.target;
-  const PhaserParameters& p = s.p;
+  const StageParameters& p = s.p;
   SphericalSupport support;
   const SphericalSpectrum H =
       sourceSpectrum((pose.R * s.points).colwise() + pose.t, s.channels, p, e,

@@ -71,7 +71,7 @@ int automaticRandomPoses(const std::string& relative, int poses)
     const Eigen::Matrix4d G = phaser.getFinalTransformation().cast<double>();
     const double r = pcl_phaser::bench::rreDeg(G, T), t = pcl_phaser::bench::rteM(G, T);
     std::printf("  %s pose %d: %s, RRE %.3f deg, RTE %.3f m\n", relative.c_str(), k,
-                name(phaser.getUsedProjectionCenter()), r, t);
+                name(phaser.getResult().projection_center), r, t);
     ok += phaser.hasConverged() && r < 2.0 && t < 0.3;
   }
   return ok;
@@ -89,7 +89,7 @@ Eigen::Matrix4d alignAutomatic(const CloudXYZ::Ptr& source, const CloudXYZ::Ptr&
   CloudXYZ out;
   phaser.align(out);
   EXPECT_TRUE(phaser.hasConverged());
-  EXPECT_EQ(phaser.getUsedProjectionCenter(), expected);
+  EXPECT_EQ(phaser.getResult().projection_center, expected);
   return phaser.getFinalTransformation().cast<double>();
 }
 
@@ -170,8 +170,8 @@ TEST(AutomaticCentre, SacIaPatternUsesTheCentroid)
     p->align(out);
     ASSERT_TRUE(p->hasConverged());
   }
-  EXPECT_EQ(automatic.getUsedProjectionCenter(), Center::Centroid);
-  EXPECT_EQ(centroid.getUsedProjectionCenter(), Center::Centroid);
+  EXPECT_EQ(automatic.getResult().projection_center, Center::Centroid);
+  EXPECT_EQ(centroid.getResult().projection_center, Center::Centroid);
   EXPECT_TRUE(automatic.getFinalTransformation().isApprox(
       centroid.getFinalTransformation(), 1e-6f));
 }

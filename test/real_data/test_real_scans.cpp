@@ -176,10 +176,12 @@ TEST(RealPairs, Hdl32AgainstReference)
     CloudXYZ out;
     phaser.align(out);
     ASSERT_TRUE(phaser.hasConverged());
-    EXPECT_EQ(phaser.getUsedProjectionCenter(), Phaser::ProjectionCenter::SensorOrigin);
+    EXPECT_EQ(phaser.getResult().projection_center,
+              Phaser::ProjectionCenter::SensorOrigin);
     const Eigen::Matrix4d G = phaser.getFinalTransformation().cast<double>();
     std::printf("  global: RRE %.3f deg, RTE %.4f m, score %.1f\n",
-                rreDeg(G, reference), rte(G, reference), phaser.getTranslationScore());
+                rreDeg(G, reference), rte(G, reference),
+                phaser.getResult().translation_score);
     EXPECT_LT(rreDeg(G, reference), 1.0);
     EXPECT_LT(rte(G, reference), 0.3);
   }
@@ -203,12 +205,12 @@ TEST(RealPairs, OfficeKeypointsAgainstGroundTruth)
   CloudXYZ out;
   phaser.align(out);
   const Eigen::Matrix4d G = phaser.getFinalTransformation().cast<double>();
-  const pcl_phaser::PhaserEstimate& e = phaser.getEstimate();
+  const pcl_phaser::PhaserResult& e = phaser.getResult();
   std::printf(
       "  global: RRE %.3f deg, RTE %.4f m, score %.1f, inliers %.3f, constraint "
       "%.3f, samples %d\n",
-      rreDeg(G, truth), rte(G, truth), phaser.getTranslationScore(), e.inlier_fraction,
-      e.constraint, e.verification_samples);
+      rreDeg(G, truth), rte(G, truth), phaser.getResult().translation_score,
+      e.inlier_fraction, e.constraint, e.verification_samples);
   ASSERT_TRUE(phaser.hasConverged());
   EXPECT_LT(rreDeg(G, truth) * kDeg, 0.1745);
   EXPECT_LT(rte(G, truth), 1.0);
@@ -238,7 +240,7 @@ TEST(RealPairs, BunnySacIaPatternWithinIcpBasin)
   CloudXYZ out;
   phaser.align(out);
   const Eigen::Matrix4d G = phaser.getFinalTransformation().cast<double>();
-  const pcl_phaser::PhaserEstimate& e = phaser.getEstimate();
+  const pcl_phaser::PhaserResult& e = phaser.getResult();
   std::printf("  global: RRE %.3f deg, mean displacement %.4f m, inliers %.3f, "
               "constraint %.3f, samples %d\n",
               rreDeg(G, truth), meanDisplacement(*source, G, truth), e.inlier_fraction,
@@ -292,11 +294,15 @@ TEST(RealScans, SecondRotationHypothesisRescuesAMirrorPeak)
     phaser.align(aligned);
     error[k] = rreDeg(phaser.getFinalTransformation().cast<double>(), T);
     if (k == 1) {
-      ASSERT_GE(phaser.getCandidates().size(), 2u);
-      int chosen = 0;
-      for (const auto& c : phaser.getCandidates())
-        chosen += c.chosen;
-      EXPECT_EQ(chosen, 1);
+      const pcl_phaser::PhaserResult& r = phaser.getResult();
+      ASSERT_GE(r.hypotheses.size(), 2u);
+      ASSERT_GE(r.chosen_hypothesis, 0);
+      ASSERT_LT(r.chosen_hypothesis, static_cast<int>(r.hypotheses.size()));
+      // Hypotheses are in the caller's frames: the estimate was refined from the
+      // chosen one.
+      EXPECT_LT(rreDeg(r.hypotheses[r.chosen_hypothesis].transformation,
+                       phaser.getFinalTransformation().cast<double>()),
+                5.0);
     }
   }
   std::printf("  one hypothesis: RRE %.2f deg; three: RRE %.3f deg\n", error[0],

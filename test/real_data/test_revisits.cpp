@@ -68,9 +68,9 @@ Eigen::Matrix4d align(const Cloud::ConstPtr& source, const Cloud::ConstPtr& targ
   phaser.align(aligned);
   converged = phaser.hasConverged();
   if (why)
-    *why = "inlier fraction " + std::to_string(phaser.getEstimate().inlier_fraction) +
+    *why = "inlier fraction " + std::to_string(phaser.getResult().inlier_fraction) +
            ", free-space violation " +
-           std::to_string(phaser.getEstimate().free_space_violation);
+           std::to_string(phaser.getResult().free_space_violation);
   return phaser.getFinalTransformation().cast<double>();
 }
 

@@ -135,7 +135,9 @@ TEST(PhaserRegistration, RecoversKnownPoseSensorOrigin)
                                    makePose({0.3, -1, 0.2}, 0.9, {0.0, 0.0, 0.0})})
     for (bool normalized : {false, true}) {
       pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
-      phaser.setNormalizedRefinement(normalized);
+      pcl_phaser::PhaserParameters params = phaser.getParameters();
+      params.normalized_refinement = normalized;
+      phaser.setParameters(params);
       phaser.setInputSource(seenFrom(*target, T));
       phaser.setInputTarget(target);
       CloudXYZ out;
@@ -161,7 +163,7 @@ TEST(PhaserRegistration, ConvergenceMeansAVerifiedPose)
   CloudXYZ out;
   phaser.align(out);
   ASSERT_TRUE(phaser.hasConverged());
-  const pcl_phaser::PhaserEstimate e = phaser.getEstimate();
+  const pcl_phaser::PhaserResult e = phaser.getResult();
   EXPECT_TRUE(e.verified);
   EXPECT_GT(e.inlier_fraction, 0.5); // the same room seen again
   EXPECT_GT(e.constraint, 0.05);     // floor and walls of two directions
@@ -353,7 +355,9 @@ TEST(PhaserRegistration, CovarianceIsPositiveDefiniteAndShrinksWithBandwidth)
   pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> unrelated;
   unrelated.setInputSource(makeScene<pcl::PointXYZ>(6, 300));
   unrelated.setInputTarget(target);
-  unrelated.setMinimumPeakScore(1e9); // nothing converges
+  pcl_phaser::PhaserParameters never = unrelated.getParameters();
+  never.min_peak_score = 1e9; // nothing converges
+  unrelated.setParameters(never);
   CloudXYZ out;
   unrelated.align(out);
   ASSERT_FALSE(unrelated.hasConverged());
@@ -370,13 +374,13 @@ TEST(PhaserRegistration, CachedTargetGivesIdenticalResults)
   CloudXYZ out;
   phaser.align(out);
   const Eigen::Matrix4f first = phaser.getFinalTransformation();
-  EXPECT_GT(phaser.getEstimate().target_ms, 0.0);
+  EXPECT_GT(phaser.getResult().target_ms, 0.0);
   phaser.align(out);
-  EXPECT_EQ(phaser.getEstimate().target_ms, 0.0); // target spectra came from the cache
+  EXPECT_EQ(phaser.getResult().target_ms, 0.0); // target spectra came from the cache
   EXPECT_TRUE(first == phaser.getFinalTransformation());
   phaser.setInputTarget(target); // invalidates
   phaser.align(out);
-  EXPECT_GT(phaser.getEstimate().target_ms, 0.0);
+  EXPECT_GT(phaser.getResult().target_ms, 0.0);
   EXPECT_TRUE(first == phaser.getFinalTransformation());
 }
 
@@ -464,7 +468,7 @@ TEST(PhaserRegistration, ChannelsFollowThePointType)
   pcl::PhaserRegistration<pcl::PointXYZI, pcl::PointXYZI> off;
   off.setUseIntensity(false);
   EXPECT_EQ(off.getFusedChannels(), static_cast<std::uint32_t>(CHANNEL_RANGE));
-  EXPECT_FALSE(off.getUseIntensity());
+  EXPECT_FALSE(off.getParameters().channels & CHANNEL_INTENSITY);
 }
 
 TEST(PhaserRegistration, AllPointTypesInstantiated)
@@ -585,21 +589,28 @@ TEST(PhaserRegistrationBadInput, ParametersOutOfRange)
     configure(phaser);
     expectRejected(phaser, source, scene);
   };
+  auto setting = [&](auto&& change) {
+    check([&](auto& phaser) {
+      pcl_phaser::PhaserParameters q = phaser.getParameters();
+      change(q);
+      phaser.setParameters(q);
+    });
+  };
   check([](auto& p) { p.setBandwidth(0); });
   check([](auto& p) { p.setBandwidth(1000); });
-  check([](auto& p) { p.setSpatialGridSize(0); });
-  check([](auto& p) { p.setSpatialGridSize(10000); });
-  check([](auto& p) { p.setVoxelSize(-1.0); });
-  check([](auto& p) { p.setVoxelSize(std::numeric_limits<double>::quiet_NaN()); });
-  check([](auto& p) { p.setVoxelSize(1e-6); }); // would need 10^7 voxels per axis
-  check([](auto& p) { p.setRefinementIterations(-1); });
+  setting([](auto& q) { q.spatial_grid_size = 0; });
+  setting([](auto& q) { q.spatial_grid_size = 10000; });
+  setting([](auto& q) { q.voxel_size = -1.0; });
+  setting([](auto& q) { q.voxel_size = std::numeric_limits<double>::quiet_NaN(); });
+  setting([](auto& q) { q.voxel_size = 1e-6; }); // would need 10^7 voxels per axis
+  setting([](auto& q) { q.refinement_iterations = -1; });
   check([](auto& p) { p.setNumberOfThreads(0); });
   check([](auto& p) { p.setNumberOfThreads(100000); });
-  check([](auto& p) { p.setMinimumPeakScore(-1.0); });
-  check([](auto& p) { p.setMinimumNormalizedOverlap(-0.1); });
-  check([](auto& p) { p.setMinimumNormalizedOverlap(1.5); });
-  check([](auto& p) {
-    p.setMinimumNormalizedOverlap(std::numeric_limits<double>::quiet_NaN());
+  setting([](auto& q) { q.min_peak_score = -1.0; });
+  setting([](auto& q) { q.min_normalized_overlap = -0.1; });
+  setting([](auto& q) { q.min_normalized_overlap = 1.5; });
+  setting([](auto& q) {
+    q.min_normalized_overlap = std::numeric_limits<double>::quiet_NaN();
   });
 }
 

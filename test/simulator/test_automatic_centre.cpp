@@ -45,13 +45,13 @@ TEST(AutomaticCentre, SimulatedScanPairUsesTheSensorOriginAndTheCache)
   Cloud out;
   phaser.align(out);
   ASSERT_TRUE(phaser.hasConverged());
-  EXPECT_EQ(phaser.getUsedProjectionCenter(), Center::SensorOrigin);
+  EXPECT_EQ(phaser.getResult().projection_center, Center::SensorOrigin);
   EXPECT_LT(
       rreDeg(phaser.getFinalTransformation().cast<double>(), pair.T_target_source),
       2.0);
   const Eigen::Matrix4f first = phaser.getFinalTransformation();
   phaser.align(out); // same choice: the cached target model is reused
-  EXPECT_EQ(phaser.getEstimate().target_ms, 0.0);
+  EXPECT_EQ(phaser.getResult().target_ms, 0.0);
   EXPECT_EQ(phaser.getFinalTransformation(), first);
 
   // The target scan itself, yawed by 90 deg and moved 100 m from its origin: it no
@@ -66,8 +66,8 @@ TEST(AutomaticCentre, SimulatedScanPairUsesTheSensorOriginAndTheCache)
   phaser.setInputSource(far);
   phaser.align(out);
   ASSERT_TRUE(phaser.hasConverged());
-  EXPECT_EQ(phaser.getUsedProjectionCenter(), Center::Centroid);
-  EXPECT_GT(phaser.getEstimate().target_ms, 0.0);
+  EXPECT_EQ(phaser.getResult().projection_center, Center::Centroid);
+  EXPECT_GT(phaser.getResult().target_ms, 0.0);
   const Eigen::Matrix4d truth = away.inverse();
   const Eigen::Matrix4d estimate = phaser.getFinalTransformation().cast<double>();
   EXPECT_LT(rreDeg(estimate, truth), 2.0);

@@ -10,7 +10,6 @@
  */
 #include "scan_simulator.h"
 
-#include <pcl_phaser/core/pipeline.h>
 #include <pcl_phaser/phaser_registration.h>
 
 #include <Eigen/Geometry>
@@ -56,12 +55,13 @@ TEST(TiltedPair, NormalizedRefinementRemovesTheTiltBias)
       pcl_phaser::PhaserParameters p;
       p.num_threads = 2;
       p.normalized_refinement = normalized != 0;
-      const auto model = pcl_phaser::prepareTarget(target.points, p, target.channels);
-      const pcl_phaser::PhaserEstimate e =
-          pcl_phaser::estimateTransform(*model, source.points, p, source.channels);
-      rre[normalized] =
-          Eigen::AngleAxisd(e.rotation * R_true.transpose()).angle() * kRadToDeg;
-      rte[normalized] = (e.translation - t_true).norm();
+      const pcl_phaser::Target model(target.points, target.channels);
+      const pcl_phaser::PhaserResult e = pcl_phaser::align(
+          model, {source.points, source.channels}, Eigen::Matrix4d::Identity(), p);
+      ASSERT_TRUE(e.error.empty()) << e.error;
+      const Eigen::Matrix3d R = e.transformation.topLeftCorner<3, 3>();
+      rre[normalized] = Eigen::AngleAxisd(R * R_true.transpose()).angle() * kRadToDeg;
+      rte[normalized] = (e.transformation.topRightCorner<3, 1>() - t_true).norm();
     }
     std::printf("  seed %u (relative tilt %.2f deg): plain RRE %.3f deg RTE %.3f m | "
                 "normalised RRE %.3f deg RTE %.3f m\n",
@@ -96,9 +96,11 @@ TEST(TiltedPair, DefaultRegistrationConvergesWithinOneDegree)
     const double rte =
         (T.topRightCorner<3, 1>() - pair.T_target_source.topRightCorner<3, 1>()).norm();
     std::printf("  seed %u: RRE %.3f deg RTE %.3f m, score %.1f, overlap %.3f\n", seed,
-                rre, rte, phaser.getTranslationScore(), phaser.getNormalizedOverlap());
+                rre, rte, phaser.getResult().translation_score,
+                phaser.getResult().normalized_overlap);
     EXPECT_TRUE(phaser.hasConverged()) << "seed " << seed;
-    EXPECT_GE(phaser.getNormalizedOverlap(), phaser.getMinimumNormalizedOverlap());
+    EXPECT_GE(phaser.getResult().normalized_overlap,
+              phaser.getParameters().min_normalized_overlap);
     EXPECT_LT(rre, 1.0) << "seed " << seed;
     EXPECT_LT(rte, 0.2) << "seed " << seed;
   }
@@ -113,21 +115,29 @@ TEST(TiltedPair, NormalizedRefinementInASinglePass)
   p.num_threads = 2;
   p.passes = 1;
   p.normalized_refinement = true;
-  const auto model = pcl_phaser::prepareTarget(target.points, p, target.channels);
-  const pcl_phaser::PhaserEstimate e =
-      pcl_phaser::estimateTransform(*model, source.points, p, source.channels);
+  const pcl_phaser::Target model(target.points, target.channels);
+  const pcl_phaser::SourceCloud input{source.points, source.channels};
+  const pcl_phaser::PhaserResult e =
+      pcl_phaser::align(model, input, Eigen::Matrix4d::Identity(), p);
+  ASSERT_TRUE(e.error.empty()) << e.error;
   const Eigen::Matrix3d R_true = pair.T_target_source.topLeftCorner<3, 3>();
   const double rre =
       Eigen::AngleAxisd(e.rotation * R_true.transpose()).angle() * kRadToDeg;
-  std::printf("  one pass, normalised: RRE %.3f deg\n", rre);
+  std::printf("  one pass, normalized: RRE %.3f deg\n", rre);
   EXPECT_TRUE(e.rotation.allFinite());
+  EXPECT_GT(e.target_ms, 0.0);
   EXPECT_LT(rre, 10.0); // one pass is parallax-limited (doc/benchmarks.md section 3)
-  // A model prepared without the supports is refused.
+  // The target model prepared with the supports is reused for the same parameters and
+  // prepared again, without them, for the plain refinement.
+  const pcl_phaser::PhaserResult again =
+      pcl_phaser::align(model, input, Eigen::Matrix4d::Identity(), p);
+  EXPECT_EQ(again.target_ms, 0.0);
+  EXPECT_TRUE(again.transformation == e.transformation);
   p.normalized_refinement = false;
-  const auto plain = pcl_phaser::prepareTarget(target.points, p, target.channels);
-  p.normalized_refinement = true;
-  EXPECT_ANY_THROW(
-      pcl_phaser::estimateTransform(*plain, source.points, p, source.channels));
+  const pcl_phaser::PhaserResult plain =
+      pcl_phaser::align(model, input, Eigen::Matrix4d::Identity(), p);
+  EXPECT_TRUE(plain.error.empty()) << plain.error;
+  EXPECT_GT(plain.target_ms, 0.0);
 }
 
 } // namespace

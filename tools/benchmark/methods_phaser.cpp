@@ -22,10 +22,12 @@ MethodResult align(const typename pcl::PointCloud<PointP>::ConstPtr& source,
   pcl::PhaserRegistration<PointP, PointP> phaser;
   phaser.setBandwidth(settings.bandwidth);
   phaser.setNumberOfThreads(settings.threads);
-  phaser.setNormalizedRefinement(settings.normalized_refinement);
-  using Center = typename pcl::PhaserRegistration<PointP, PointP>::ProjectionCenter;
-  phaser.setProjectionCenter(settings.centroid ? Center::Centroid
-                                               : Center::SensorOrigin);
+  pcl_phaser::PhaserParameters params = phaser.getParameters();
+  params.normalized_refinement = settings.normalized_refinement;
+  params.projection_center = settings.centroid
+                                 ? pcl_phaser::ProjectionCenter::Centroid
+                                 : pcl_phaser::ProjectionCenter::SensorOrigin;
+  phaser.setParameters(params);
   phaser.setInputSource(source);
   phaser.setInputTarget(target);
   pcl::PointCloud<PointP> aligned;
@@ -34,8 +36,8 @@ MethodResult align(const typename pcl::PointCloud<PointP>::ConstPtr& source,
   result.ms = setup_ms + elapsedMs(start);
   result.transformation = phaser.getFinalTransformation().template cast<double>();
   result.converged = phaser.hasConverged();
-  result.score = phaser.getTranslationScore();
-  result.overlap = phaser.getNormalizedOverlap();
+  result.score = phaser.getResult().translation_score;
+  result.overlap = phaser.getResult().normalized_overlap;
   if (result.converged) {
     result.covariance = phaser.getCovariance();
     result.has_covariance = true;

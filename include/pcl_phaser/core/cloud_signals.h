@@ -4,6 +4,7 @@
  */
 #pragma once
 
+#include <pcl_phaser/core/pipeline.h>
 #include <pcl_phaser/core/so3_refinement.h>
 #include <pcl_phaser/core/spatial_correlation.h>
 #include <pcl_phaser/core/spherical_harmonics.h>
@@ -13,11 +14,6 @@
 #include <vector>
 
 namespace pcl_phaser {
-
-/** \brief Per-point values of the channels fused with the geometry (intensity,
- *  reflectivity, ambient, luminance...), one vector per channel, in the same order for
- *  target and source. */
-using ChannelValues = std::vector<Eigen::VectorXd>;
 
 /** \brief Each channel mapped robustly to a common scale (normalizeChannel: median
  *  removed, divided by the scaled MAD, clamped), so raw uint16 reflectivity cannot

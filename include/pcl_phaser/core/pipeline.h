@@ -4,182 +4,243 @@
  */
 #pragma once
 
-#include <pcl_phaser/core/cloud_signals.h>
+#include <pcl_phaser/core/bingham.h>
 
 #include <Eigen/Core>
 
-#include <cmath>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
-/** \brief The registration engine: Eigen and FFTW only, no PCL (spherical sampling and
- *  harmonic transform, SO(3) correlation and refinement, 3-D spatial correlation,
- *  channel fusion, Bingham and Gaussian uncertainty). prepareTarget() and
- *  estimateTransform() are its entry points; pcl::PhaserRegistration wraps them. */
+/** \brief The registration engine: Eigen and FFTW only, no PCL. align() is its entry
+ *  point; pcl::PhaserRegistration translates PCL types into its inputs and its result
+ *  back. Layers and data flow: doc/architecture.md. */
 namespace pcl_phaser {
 
-/** \brief Parameters of one registration, with the defaults PhaserRegistration uses. */
+/** \brief Per-point values of the channels fused with the geometry (intensity,
+ *  reflectivity, ambient, luminance...), one vector per channel, in the same order for
+ *  target and source. Any scale: each channel is normalized per cloud. */
+using ChannelValues = std::vector<Eigen::VectorXd>;
+
+/** \brief Where the clouds are projected on the sphere. */
+enum class ProjectionCenter {
+  SensorOrigin, ///< the origin of each cloud's frame (LiDAR scans in their sensor
+                ///< frame)
+  Centroid,     ///< each cloud's centroid (object scans, clouds far from their origin)
+  /** SensorOrigin when both clouds look like spinning-LiDAR scans in their sensor frame
+   *  (looksSensorCentred: they surround their origin in a band with empty poles), else
+   *  Centroid; PhaserResult::projection_center tells which. */
+  Automatic
+};
+
+/** \brief Every setting of one registration, with its default. Ranges are checked once
+ *  per align() (validateParameters); an illegal value makes align() fail cleanly. */
 struct PhaserParameters {
-  int bandwidth = 64;            ///< spherical bandwidth B, 1..256
-  int spatial_grid_size = 128;   ///< voxels along the longest axis, 8..1024
-  double voxel_size = 0.0;       ///< explicit voxel size in metres; 0 = from grid size
-  int refinement_iterations = 2; ///< Newton iterations on SO(3) (per stage), 0..10
-  int fusion_levels = 5;       ///< Laplacian pyramid levels of the channel fusion, 1..8
-  int rotation_candidates = 3; ///< distinct SO(3) peaks tried in pass 1, 1..10
-  int passes = 3;      ///< at most; 1: one global pass; 2+: re-project, re-correlate
-  int num_threads = 1; ///< worker threads, 1..64
-  /** \brief After the Newton refinement of plain C, refine again on the
-   *  energy-normalised correlation (refineRotation with supports), within
-   *  normalizedRefinementRadius(B) of the plain maximum. It removes most of the
-   *  pull of the field-of-view edges towards equal sensor tilt (simulated tilted-sensor
-   *  pairs: median 1.13 -> 0.56 deg) for a few ms more per align (doc/benchmarks.md
-   *  section 6). */
+  /** \brief Spherical bandwidth B, 1..256: the sphere is sampled on a 2B x 2B grid and
+   *  the SO(3) grid spacing is pi / B before refinement. */
+  int bandwidth = 64;
+  /** \brief Voxels along the longest axis of the translation grid, 8..1024; the grid is
+   *  sized to the target with a margin. Ignored when voxel_size > 0. */
+  int spatial_grid_size = 128;
+  /** \brief Voxel edge in meters, >= 0; 0 derives it from spatial_grid_size and the
+   *  extent of the target. */
+  double voxel_size = 0.0;
+  /** \brief Newton iterations that refine the rotation peak, 0..10, on the plain
+   *  correlation and again on the normalized one (normalized_refinement). */
+  int refinement_iterations = 2;
+  /** \brief Laplacian pyramid levels of the channel fusion, 1..8 (1: plain average). */
+  int fusion_levels = 5;
+  /** \brief Distinct peaks of the range correlation taken through the translation
+   *  stage in pass 1, 1..10; more than one matters for symmetric scenes. */
+  int rotation_candidates = 3;
+  /** \brief Passes, 1..5, at most. Pass 1 projects each cloud about its own center;
+   *  each further pass projects the source, moved by the estimate, about the target's
+   *  center and measures the residual shift on a fine grid over the target's inner
+   *  region. They stop once a shift update is below a quarter of a fine voxel. */
+  int passes = 3;
+  /** \brief Worker threads, 1..64; results are bit-identical for any count. */
+  int num_threads = 1;
+  /** \brief Refine the rotation again on the energy-normalized SO(3) correlation,
+   *  within 0.75 deg x 64 / B of the maximum of the plain one, when the clouds are
+   *  projected about their sensor origins (about centroids the plain refinement is
+   *  kept). It removes most of the pull of the field-of-view edges toward equal sensor
+   *  tilt (doc/benchmarks.md section 6). */
   bool normalized_refinement = true;
-  /** \brief Rotation hypotheses from the surface-orientation histograms
-   *  (orientationSpectrum), tried beside the range peaks, 0..10 (0: none). The
-   *  histogram does not move with the sensor, so it finds the rotation of scans taken
-   *  metres apart, where the range function's parallax misleads. */
+  /** \brief Rotation hypotheses from the surface-orientation histograms, tried beside
+   *  the range peaks about sensor origins, 0..10 (0: none). */
   int orientation_candidates = 6;
   /** \brief Bandwidth of the orientation histograms, 8..128. */
   int orientation_bandwidth = 32;
-  /** \brief Exponent of the cross-power whitening of the global translation search
-   *  (correlateSpectraWhitened), in [0, 1]. Later passes search a residual on the
-   *  fine grid without it: there the pull of the overlap hill towards zero residual
-   *  is a pull towards the current estimate. */
+  /** \brief Exponent of the cross-power whitening of the global translation search,
+   *  in [0, 1] (0: plain correlation, 1: phase correlation). */
   double whitening = 0.5;
-  /** \brief Clouds are seen from their sensor origins (the projection centre). Then
-   *  hypotheses are ranked by verifyPose, including the samples in space the target saw
-   *  through, and the orientation histograms add hypotheses. Otherwise (object scans
-   *  about their centroids) hypotheses are ranked by their occupancy correlation peak
-   *  and only the range peaks are tried. */
-  bool sensor_centred = true;
-  /** \brief A pose is verified when at least this (weighted) share of the source
-   *  samples has a target point within the verification radius whose normal agrees,
-   *  in [0, 1] (doc/benchmarks.md section 9 has the measured distributions). */
+  /** \brief Where both clouds are projected on the sphere. */
+  ProjectionCenter projection_center = ProjectionCenter::SensorOrigin;
+  /** \brief Channel switches: the pcl::phaser::Channel flags of the point fields
+   *  pcl::PhaserRegistration may fuse (those both point types carry); all by default.
+   *  The engine fuses whatever ChannelValues it is given. */
+  std::uint32_t channels = ~0u;
+  /** \brief Verification: least (weighted) share of the source samples with a target
+   *  point within the verification radius whose normal agrees, in [0, 1]. */
   double min_inlier_fraction = 0.2;
-  /** \brief ... and, with sensor_centred, at most this share of them lies in space
-   *  the target saw through, in [0, 1]. */
+  /** \brief Verification about sensor origins: largest share of samples in space the
+   *  target saw through, in [0, 1]. */
   double max_free_space_violation = 0.02;
-  /** \brief ... and its matched samples pin the translation down in every direction:
-   *  PoseVerification::constraint at least this, in [0, 1/3]. */
+  /** \brief Verification: least PoseVerification::constraint (how well the matched
+   *  samples pin the translation down in every direction), in [0, 1/3]. */
   double min_constraint = 0.04;
+  /** \brief About centroids, converged also needs a translation peak score (the
+   *  peak-to-sidelobe ratio of the final 3-D correlation) of at least this, >= 0 ...
+   *  (the figures behind these defaults: doc/benchmarks.md section 10) */
+  double min_peak_score = 20.0;
+  /** \brief ... or half of it with a normalized overlap of at least this, in [0, 1]
+   *  (doc/benchmarks.md section 5). */
+  double min_normalized_overlap = 0.55;
 };
 
-/** \brief Fewest verification samples (occupied cells of the verification radius) a
- *  source needs for its pose to be verified: fewer cannot tell a pose from another. */
-constexpr int kMinVerificationSamples = 20;
-
-/** \brief How far (radians, at B = 64; scaled by 64 / B, like the precision of the
- *  plain maximum) the normalised refinement may move the rotation from the maximum of
- *  plain C. The tilt pull it corrects is about 40 % of the relative tilt of the two
- *  sensors, so about 1 deg for vehicles; unbounded, the normalised objective
- *  can also climb away from a maximum whose viewpoint has not settled, towards a
- *  smaller overlap that matches better (demo seed 4: 1.3 -> 4.9 deg), and on sparse
- *  scans it is noisier than plain C. Radius 0.5 / 0.75 / 1 deg: makeDemoPair seeds 1-40
- *  median RRE 0.73 / 0.56 / 0.42 deg (plain 1.13); the 102 real-scan poses of the NEES
- *  study RMS RRE 0.32 / 0.36 / 0.38 deg (plain 0.43), inside the 95 % ellipsoid 81 / 80
- *  / 79 % (plain 90 %, doc/benchmarks.md section 5). */
-constexpr double kNormalizedRefinementRadius = 0.75 * M_PI / 180.0;
-
-/** \brief The trust radius (radians) at bandwidth B: kNormalizedRefinementRadius * 64 /
- * B.
- */
-inline double normalizedRefinementRadius(int bandwidth)
-{
-  return kNormalizedRefinementRadius * 64.0 / bandwidth;
-}
-
-/** \brief Empty when \a p is legal, else the reason (for PCL_ERROR). */
+/** \brief Empty when every field of \a p is in its range, else the reason. */
 std::string validateParameters(const PhaserParameters& p);
 
-/** \brief One distinct peak of the first global rotation search, taken through the
- *  translation stage. */
+/** \brief One hypothesis of the first global search, taken through the translation
+ *  stage and verified. */
 struct RotationHypothesis {
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity(); ///< grid rotation
-  Eigen::Vector3d translation = Eigen::Vector3d::Zero();  ///< its translation
-  double rotation_score = 0.0;   ///< normalised C at the grid peak
-  double overlap = 0.0;          ///< peak of the 3-D correlation: how well it overlaps
+  /** \brief Its pose in the caller's frames: maps source points into the target frame,
+   *  the guess included. */
+  Eigen::Matrix4d transformation = Eigen::Matrix4d::Identity();
+  /** \brief Its grid rotation and translation in centered coordinates (each cloud
+   *  relative to its projection center, the source moved by the guess). */
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  double rotation_score = 0.0;   ///< normalized correlation at its grid peak, [-1, 1]
+  double overlap = 0.0;          ///< peak of its 3-D correlation (larger is better)
   bool from_orientation = false; ///< a peak of the orientation histograms, not of range
   double inlier_fraction = 0.0;  ///< PoseVerification::inlier_fraction of the pose
   double verification_score = 0.0;   ///< PoseVerification::score of the pose
   double free_space_violation = 0.0; ///< PoseVerification::free_space_violation
 };
 
-/** \brief What one registration found, in centred coordinates: for source points q_s
- * and target points q_t (each relative to its projection centre), q_t ~ R q_s + t. */
-struct PhaserEstimate {
+/** \brief What one align() found. On failure (error not empty) transformation is the
+ *  guess, converged is false and the other fields keep their defaults. */
+struct PhaserResult {
+  std::string error; ///< empty on success, else why nothing was estimated
+  /** \brief Maps source points into the target frame (p_target = T p_source), the guess
+   *  composed: T = [R, c_t + t - R c_s] * guess. */
+  Eigen::Matrix4d transformation = Eigen::Matrix4d::Identity();
+  /** \brief The final pose verified and, about centroids, its translation peak is
+   *  distinct (PhaserParameters::min_peak_score, min_normalized_overlap). */
+  bool converged = false;
+  /** \brief The center used: the requested one, or what Automatic chose. */
+  ProjectionCenter projection_center = ProjectionCenter::SensorOrigin;
+  /** \brief The estimate in centered coordinates: q_t ~ rotation q_s + translation for
+   *  source and target points relative to their projection centers (c_s, c_t). */
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();
-  double rotation_score = 0.0;    ///< C(R) / (|f| |h|), in [-1, 1]
-  double translation_score = 0.0; ///< peak-to-sidelobe ratio of the 3-D correlation
+  /** \brief rotation * c_s, meters: how far a rotation error moves the translation. */
+  Eigen::Vector3d lever_arm = Eigen::Vector3d::Zero();
+  double rotation_score = 0.0; ///< normalized SO(3) correlation at rotation, [-1, 1]
+  /** \brief Peak-to-sidelobe ratio of the Laplacian of the final 3-D correlation, >= 0
+   *  (identical scans score far above min_peak_score). */
+  double translation_score = 0.0;
   /** \brief Peak of the final 3-D correlation over the norms of the two voxel grids:
    *  the cosine similarity of the aligned grids, in [-1, 1] (1: identical). */
   double normalized_overlap = 0.0;
-  double sampling_ms = 0.0;    ///< spherical binning of the source
-  double sht_ms = 0.0;         ///< spherical harmonic transform of the source
-  double so3_ms = 0.0;         ///< SO(3) correlation and peak search
-  double refinement_ms = 0.0;  ///< Newton refinement of the rotation
-  double translation_ms = 0.0; ///< voxelisation, 3-D FFT, correlation, peak
-  double target_ms = 0.0;      ///< target preparation (0 when it came from the cache)
-  int passes = 0;              ///< passes run
-  std::vector<RotationHypothesis> hypotheses; ///< pass-1 candidates, in peak order
-  int chosen_hypothesis = 0; ///< the one with the best verification score
-  /** \brief Verification of the final pose (verifyPose): source samples on a grid of
-   *  verification_radius against the target points within that radius. */
+  std::vector<RotationHypothesis> hypotheses; ///< pass-1 hypotheses, in peak order
+  int chosen_hypothesis = 0; ///< index of the one the estimate was refined from
+  int passes = 0;            ///< passes run
+  /** \brief Verification of the final pose (source samples on a grid of
+   *  verification_radius against the target points within that radius): the share of
+   *  samples with an agreeing target point within the radius, in [0, 1]. */
   double inlier_fraction = 0.0;
-  double verification_score = 0.0;
-  double free_space_violation = 0.0;
-  double constraint = 0.0;          ///< PoseVerification::constraint of the final pose
-  double verification_radius = 0.0; ///< metres: half the coarse voxel
-  int verification_samples = 0;     ///< source samples verified
-  /** \brief The final pose passed verification: enough samples and, with
-   *  sensor_centred, inlier_fraction >= min_inlier_fraction, constraint >=
-   *  min_constraint and free_space_violation <= max_free_space_violation. About
-   *  centroids (object scans, keypoints) the radius of half a coarse voxel is below the
-   *  sampling of many clouds, so only the sample count is required there and the
-   *  adapter also asks for a distinct correlation peak. */
+  double verification_score = 0.0;   ///< the share weighted by closeness, in [0, 1]
+  double free_space_violation = 0.0; ///< share in space the target saw through, [0, 1]
+  double constraint = 0.0;           ///< PoseVerification::constraint of the final pose
+  double verification_radius = 0.0;  ///< meters: half the coarse voxel
+  int verification_samples = 0;      ///< source samples verified
+  /** \brief Enough samples and, about sensor origins, inlier_fraction,
+   *  constraint and free_space_violation within PhaserParameters' limits. */
   bool verified = false;
-  double verification_ms = 0.0; ///< source samples and pose verification
-  double orientation_ms = 0.0;  ///< surface patches, histogram and its correlation
-  /** \brief Grid rotations around the last rotation peak, moved onto the estimate
+  /** \brief Grid rotations around the last rotation peak, moved onto rotation
    *  (quaternions w, x, y, z), and their weights (correlation above the block's
-   * lowest). */
+   *  lowest); see rotationUncertainty(). */
   std::vector<Eigen::Vector4d> rotation_samples;
   std::vector<double> rotation_weights;
-  /** \brief Covariance of the translation (m^2): the error of the sub-voxel peak of
-   *  the last 3-D correlation under the noise its sidelobes and mismatch imply (see
-   *  translationCovariance in peak_neighbourhood.h). */
+  /** \brief Covariance of the translation, m^2 (target frame): the error of the
+   *  sub-voxel peak of the last 3-D correlation under the noise its sidelobes and
+   *  mismatch imply. Not the width of the peak, which is far wider. */
   Eigen::Matrix3d translation_covariance = Eigen::Matrix3d::Zero();
+  /** \brief Wall time of the target's preparation, ms; 0 when it came from the cache.
+   */
+  double target_ms = 0.0;
+  double sampling_ms = 0.0;     ///< ms, spherical binning of the source
+  double sht_ms = 0.0;          ///< ms, spherical harmonic transforms of the source
+  double so3_ms = 0.0;          ///< ms, SO(3) correlations and peak searches
+  double refinement_ms = 0.0;   ///< ms, Newton refinement of the rotation
+  double translation_ms = 0.0;  ///< ms, voxelization, 3-D FFTs, correlation, peaks
+  double verification_ms = 0.0; ///< ms, source samples and pose verification
+  double orientation_ms = 0.0;  ///< ms, surface patches and orientation histograms
 };
 
-/** \brief Everything that depends on the target alone (its spherical spectrum, its
- * voxel grid and voxel spectrum): computed once, reused for many sources. Immutable. */
+/** \brief The source of one align(): finite points in the caller's frame (3 x n) and
+ *  the values of its channels (the same channels as the target's, any scale). */
+struct SourceCloud {
+  Eigen::Matrix3Xd points;
+  ChannelValues channels;
+};
+
 class TargetModel;
 
-/** \brief Prepares a target.
- *  \param[in] points 3 x n target points relative to the target's projection centre
- *  \param[in] params parameters (bandwidth, grid)
- *  \param[in] channels per-point channel values to fuse (normalised here, per cloud)
- *  \throws InvalidArgument when parameters are illegal or the points carry no signal
- *  (none finite, all at the centre, or all in one direction) */
-std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
-                                                 const PhaserParameters& params,
-                                                 const ChannelValues& channels = {});
+/** \brief The target of any number of align() calls: its finite points in its own frame
+ *  and its channels, and what align() derives from them alone (spherical and voxel
+ *  spectra), built on first use per projection center and parameters and then reused.
+ *  Thread-safe: one Target may serve concurrent align() calls. */
+class Target {
+public:
+  /** \param[in] points 3 x n finite points in the target frame
+   *  \param[in] channels per-point channel values (may be empty) */
+  explicit Target(Eigen::Matrix3Xd points, ChannelValues channels = {});
+  ~Target();
+  Target(const Target&) = delete;
+  Target& operator=(const Target&) = delete;
 
-/** \brief Time spent preparing \a model, in milliseconds. */
-double preparationTime(const TargetModel& model);
+  /** \brief The points given at construction. */
+  const Eigen::Matrix3Xd& points() const { return points_; }
 
-/** \brief Registers a source against a prepared target.
- *  \param[in] target prepared with the same bandwidth and grid parameters
- *  \param[in] points 3 x n source points relative to the source's projection centre
- *  \param[in] params parameters
- *  \param[in] channels the same channels as the target's (normalised here, per cloud)
- *  \throws InvalidArgument when parameters are illegal, do not match the target model,
- * or the source carries no signal */
-PhaserEstimate estimateTransform(const TargetModel& target,
-                                 const Eigen::Matrix3Xd& points,
-                                 const PhaserParameters& params,
-                                 const ChannelValues& channels = {});
+private:
+  friend class TargetAccess;
+  Eigen::Matrix3Xd points_;
+  ChannelValues channels_;
+  struct Cache;
+  std::unique_ptr<Cache> cache_;
+};
+
+/** \brief Registers \a source against \a target: the rotation from the correlation of
+ *  their spherical spectra on SO(3), the translation from the correlation of their
+ *  voxel grids, every hypothesis verified geometrically. Never throws for bad input:
+ *  illegal parameters, no finite points, coordinates beyond 1e6 m, a non-finite guess
+ *  or clouds without spherical signal give a result whose error says why.
+ *  \param[in] target the target, prepared once for many sources
+ *  \param[in] source the source points and channels, in the source frame
+ *  \param[in] guess applied to the source first; the estimate is composed with it
+ *  \param[in] params the settings */
+PhaserResult align(const Target& target, const SourceCloud& source,
+                   const Eigen::Matrix4d& guess, const PhaserParameters& params);
+
+/** \brief Bingham distribution of the rotation (orientation M, concentrations Z, mode
+ *  = the estimate), fitted to \a result's rotation samples (paper eqs. 6, 7, 11, 12);
+ *  uniform when there are none. The spread is expressed in the target frame. */
+BinghamDistribution rotationUncertainty(const PhaserResult& result);
+
+/** \brief 6 x 6 covariance of the pose error, ordered (rotation vector [rad],
+ *  translation [m]) for omega = Log(R_true R_est^T) and nu = t_true - t_est, so its
+ *  inverse can serve as the information matrix of a pose-graph edge: the Bingham's
+ *  tangent covariance plus a model error per axis (rotationCovariance), and the
+ *  translation covariance plus the rotation error through the lever arm. Symmetric
+ *  positive definite when \a result converged; zero otherwise.
+ *  \param[in] rotation rotationUncertainty(result)
+ *  \param[in] bandwidth the bandwidth the result was computed with */
+Eigen::Matrix<double, 6, 6> poseCovariance(const PhaserResult& result,
+                                           const BinghamDistribution& rotation,
+                                           int bandwidth);
 
 } // namespace pcl_phaser
