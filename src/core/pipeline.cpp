@@ -81,7 +81,7 @@ double msSince(Clock::time_point start)
  */
 SphericalSpectrum sourceSpectrum(const Eigen::Matrix3Xd& points,
                                  const ChannelValues& channels,
-                                 const PhaserParameters& p, PhaserEstimate& e,
+                                 const PhaserParameters& p, PhaserResult& e,
                                  SphericalSupport* support)
 {
   return sphericalSpectrum(points, channels, p, "source", e.sampling_ms, e.sht_ms,
@@ -91,7 +91,7 @@ SphericalSpectrum sourceSpectrum(const Eigen::Matrix3Xd& points,
 /** The global search: C on the SO(3) grid. */
 So3CorrelationGrid correlateRotation(const TargetModel& target,
                                      const SphericalSpectrum& H,
-                                     const PhaserParameters& p, PhaserEstimate& e)
+                                     const PhaserParameters& p, PhaserResult& e)
 {
   const auto t = Clock::now();
   So3CorrelationGrid C = So3Correlator::instance(p.bandwidth)
@@ -106,7 +106,7 @@ So3CorrelationGrid correlateRotation(const TargetModel& target,
  *  at the result through \a value. */
 Eigen::Matrix3d refine(const TargetModel& target, const SphericalSpectrum& H,
                        const SphericalSupport& support, const Eigen::Matrix3d& R,
-                       const PhaserParameters& p, double& value, PhaserEstimate& e)
+                       const PhaserParameters& p, double& value, PhaserResult& e)
 {
   const auto t = Clock::now();
   RefinedRotation refined = refineRotation(target.spherical, H, R, p.bandwidth,
@@ -132,7 +132,7 @@ double normalizedPeak(double peak, double energy_product)
  *  spread is expressed in the target frame), with weights from the correlation above
  * the lowest value of the block. */
 void rotationSamples(const So3CorrelationGrid& C, const So3GridIndex& peak,
-                     const Eigen::Matrix3d& estimate, PhaserEstimate& e)
+                     const Eigen::Matrix3d& estimate, PhaserResult& e)
 {
   const std::vector<RotationSample> block = rotationNeighbourhood(C, peak, 1);
   const Eigen::Matrix3d R_peak =
@@ -170,7 +170,7 @@ double volumeAt(const SpatialVolume& v, const Eigen::Vector3i& i)
  *  the covariance and the peak's sidelobe score is computed. */
 SpatialCorrelationResult shiftOf(const SpatialSpectrum& target,
                                  const Eigen::Matrix3Xd& points, double whitening,
-                                 const PhaserParameters& p, PhaserEstimate& e,
+                                 const PhaserParameters& p, PhaserResult& e,
                                  SpatialVolume* volume, double* source_energy)
 {
   const auto t = Clock::now();
@@ -299,7 +299,7 @@ namespace {
 /** What the verification and the orientation hypotheses need of the source. */
 SourceContext sourceContext(const TargetModel& target, const Eigen::Matrix3Xd& points,
                             const ChannelValues& channels, const StageParameters& p,
-                            PhaserEstimate& e)
+                            PhaserResult& e)
 {
   const auto t = Clock::now();
   SourceContext s{target, points, channels, p, {}, {}, {}};
@@ -326,7 +326,7 @@ PhaserResult estimateCentered(const TargetModel& target, const Eigen::Matrix3Xd&
     throw InvalidArgument("the source has " + std::to_string(raw_channels.size()) +
                           " channels, the target " + std::to_string(target.channels));
   const ChannelValues channels = normalizeChannels(raw_channels, points.cols());
-  PhaserEstimate e;
+  PhaserResult e;
   e.verification_radius = target.index.radius();
   const SourceContext s = sourceContext(target, points, channels, p, e);
   const SphericalSpectrum H = sourceSpectrum(points, channels, p, e);

@@ -42,8 +42,8 @@ inline double normalizedRefinementRadius(int bandwidth)
   return kNormalizedRefinementRadius * 64.0 / bandwidth;
 }
 
-/** The stage results share the result struct: the stages fill its centered-frame
- *  fields, align() the caller-frame ones. */
+/** The stages fill the centered-frame fields of the result, align() the caller-frame
+ *  ones; the old name of the result is kept for pipeline_stages.cpp only. */
 using PhaserEstimate = PhaserResult;
 
 /** The parameters the stages run with: the caller's, with normalized_refinement off
@@ -137,13 +137,13 @@ double msSince(Clock::time_point start);
  */
 SphericalSpectrum sourceSpectrum(const Eigen::Matrix3Xd& points,
                                  const ChannelValues& channels,
-                                 const PhaserParameters& p, PhaserEstimate& e,
+                                 const PhaserParameters& p, PhaserResult& e,
                                  SphericalSupport* support = nullptr);
 
 /** The global search: C on the SO(3) grid. */
 So3CorrelationGrid correlateRotation(const TargetModel& target,
                                      const SphericalSpectrum& H,
-                                     const PhaserParameters& p, PhaserEstimate& e);
+                                     const PhaserParameters& p, PhaserResult& e);
 
 /** Newton refinement of \a R on C, timed; with PhaserParameters::normalized_refinement
  *  then on the energy-normalised correlation (see refineRotation: plain C leans towards
@@ -151,7 +151,7 @@ So3CorrelationGrid correlateRotation(const TargetModel& target,
  *  at the result through \a value. */
 Eigen::Matrix3d refine(const TargetModel& target, const SphericalSpectrum& H,
                        const SphericalSupport& support, const Eigen::Matrix3d& R,
-                       const PhaserParameters& p, double& value, PhaserEstimate& e);
+                       const PhaserParameters& p, double& value, PhaserResult& e);
 
 /** Correlation peak over the norms of the two grids (0 when one is empty). */
 double normalizedPeak(double peak, double energy_product);
@@ -161,7 +161,7 @@ double normalizedPeak(double peak, double energy_product);
  *  spread is expressed in the target frame), with weights from the correlation above
  * the lowest value of the block. */
 void rotationSamples(const So3CorrelationGrid& C, const So3GridIndex& peak,
-                     const Eigen::Matrix3d& estimate, PhaserEstimate& e);
+                     const Eigen::Matrix3d& estimate, PhaserResult& e);
 
 /** Binary occupancy spectrum of \a points on \a grid. */
 SpatialSpectrum occupancySpectrum(const SpatialGrid& grid,
@@ -175,20 +175,20 @@ double volumeAt(const SpatialVolume& v, const Eigen::Vector3i& i);
  *  the covariance and the peak's sidelobe score is computed. */
 SpatialCorrelationResult shiftOf(const SpatialSpectrum& target,
                                  const Eigen::Matrix3Xd& points, double whitening,
-                                 const PhaserParameters& p, PhaserEstimate& e,
+                                 const PhaserParameters& p, PhaserResult& e,
                                  SpatialVolume* volume = nullptr,
                                  double* source_energy = nullptr);
 
 /** Pass 1: every hypothesis through the coarse translation search and verification;
  *  see pipeline_stages.cpp for the ranking. */
 Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_norm,
-                  PhaserEstimate& e);
+                  PhaserResult& e);
 
 /** Later passes from the viewpoint of the estimate, kept while they verify no worse. */
-Pose reprojectionPasses(const SourceContext& s, Pose pose, PhaserEstimate& e);
+Pose reprojectionPasses(const SourceContext& s, Pose pose, PhaserResult& e);
 
 /** The final refinement, shift, uncertainty and verification decision, into \a e. */
-void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e);
+void finalStage(const SourceContext& s, Pose pose, PhaserResult& e);
 
 /** Prepares a target whose points are relative to its projection center.
  *  \throws InvalidArgument when the points carry no spherical signal (all at the

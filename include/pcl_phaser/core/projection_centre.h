@@ -28,11 +28,11 @@ double viewCoverage(const Eigen::Matrix3Xd& points, const Eigen::Vector3d& viewp
 double polarFraction(const Eigen::Matrix3Xd& points, const Eigen::Vector3d& viewpoint);
 
 /** \brief Least viewCoverage of a cloud in its sensor frame (ProjectionCenter::
- *  Automatic). Shared scans: LiDAR 0.26-0.38; objects and camera frames 0.10-0.15. */
+ *  Automatic); measured on the shared scans: doc/benchmarks.md section 10. */
 constexpr double kSensorFrameCoverage = 0.2;
 
-/** \brief Most polarFraction of a cloud in its sensor frame. Shared scans: LiDAR, even
- *  re-posed, below 0.0005; office keypoint clouds 0.02-0.03. */
+/** \brief Most polarFraction of a cloud in its sensor frame (doc/benchmarks.md section
+ *  10). */
 constexpr double kSensorFramePolarFraction = 0.005;
 
 /** \brief True when \a points look like a spinning-LiDAR scan seen from its sensor at
