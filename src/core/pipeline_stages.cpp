@@ -157,7 +157,7 @@ Pose reprojectionPasses(const SourceContext& s, Pose pose, PhaserEstimate& e)
         std::make_shared<So3CorrelationGrid>(correlateRotation(s.target, H, s.p, e));
     Pose next;
     next.verifiable = pose.verifiable;
-    next.peak = C->argmax(s.p.num_threads);
+    next.peak = C->argmaxNearIdentity(kHypothesisSeparation);
     next.grid = C;
     const Eigen::Matrix3d dR = rotationFromEuler(gridEuler(next.peak, s.p.bandwidth));
     next.R = dR * pose.R;
@@ -195,7 +195,7 @@ void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
   if (!pose.grid) {
     pose.grid =
         std::make_shared<So3CorrelationGrid>(correlateRotation(target, H, p, e));
-    pose.peak = pose.grid->argmax(p.num_threads);
+    pose.peak = pose.grid->argmaxNearIdentity(kHypothesisSeparation);
     start = rotationFromEuler(gridEuler(pose.peak, p.bandwidth));
   }
   const So3CorrelationGrid& C = *pose.grid;
@@ -214,18 +214,22 @@ void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
   const SpatialCorrelationResult shift =
       shiftOf(grid, (next.R * s.points).colwise() + next.t, single ? p.whitening : 0.0,
               p, e, &volume, &energy);
-  next.t += shift.shift;
-  next.v = verify(s, next.R, next.t, e);
-  e.translation_score = shift.score;
-  e.normalized_overlap =
-      normalizedPeak(volume.values.empty() ? 0.0 : volumeAt(volume, shift.index),
-                     grid_energy * energy);
-  e.translation_covariance =
-      translationCovariance(volume, shift.index, grid_energy * energy);
+  // A wrong pose can move the source out of the fine grid: then nothing was measured.
+  const bool measured = energy > 0.0;
+  if (measured) {
+    next.t += shift.shift;
+    next.v = verify(s, next.R, next.t, e);
+    e.translation_score = shift.score;
+    e.normalized_overlap =
+        normalizedPeak(volume.values.empty() ? 0.0 : volumeAt(volume, shift.index),
+                       grid_energy * energy);
+    e.translation_covariance =
+        translationCovariance(volume, shift.index, grid_energy * energy);
+  }
   rotationSamples(C, peak, dR * pose.R, e);
   e.rotation_score =
       value / (target.spherical_norm * std::sqrt(spectrumSquaredNorm(H)));
-  if (accept(next, pose))
+  if (measured && accept(next, pose))
     pose = next;
   e.rotation = pose.R;
   e.translation = pose.t;
