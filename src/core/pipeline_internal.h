@@ -10,6 +10,7 @@
 #include <pcl_phaser/core/error.h>
 #include <pcl_phaser/core/peak_neighbourhood.h>
 #include <pcl_phaser/core/pipeline.h>
+#include <pcl_phaser/core/pose_refinement.h>
 #include <pcl_phaser/core/so3_correlation.h>
 #include <pcl_phaser/core/so3_refinement.h>
 #include <pcl_phaser/core/spatial_correlation.h>
@@ -108,6 +109,9 @@ constexpr double kOccupancySaturation = 0.05;
 
 /** Patches of the orientation histogram, in coarse voxels. */
 constexpr double kPatchVoxels = 1.0;
+
+/** Gauss-Newton steps of refinePose on the final pose. */
+constexpr int kPolishIterations = 10;
 
 /** A pose and how well it verifies; with the rotation grid of the last accepted
  *  re-projection pass (its peak is near the identity), if one was accepted. */

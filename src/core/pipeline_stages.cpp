@@ -86,7 +86,7 @@ double rank(const PoseVerification& v)
  *  decides). */
 bool accept(const Pose& next, const Pose& current)
 {
-  return !current.verifiable || rank(next.v) >= rank(current.v);
+  return !current.verifiable || rank(next.v) > rank(current.v);
 }
 
 /** Whether verification can tell poses apart: about sensor origins, with surfaces
@@ -97,6 +97,22 @@ bool canVerify(const SourceContext& s)
   const double limit = kMaxThickness * s.target.index.radius();
   return s.p.sensor_centred && s.patches.thickness <= limit &&
          s.target.thickness <= limit;
+}
+
+/** \a pose refined by refinePoseWithin (within the hypothesis separation and two
+ *  coarse voxels), kept when it verifies better. */
+Pose polish(const SourceContext& s, const Pose& pose, PhaserEstimate& e)
+{
+  const auto start = Clock::now();
+  const RigidPose refined =
+      refinePoseWithin(s.target.index, s.samples, {pose.R, pose.t}, kPolishIterations,
+                       kHypothesisSeparation, 2.0 * s.target.coarse.grid.voxel_size);
+  e.verification_ms += msSince(start);
+  Pose next = pose;
+  next.R = refined.R;
+  next.t = refined.t;
+  next.v = verify(s, next.R, next.t, e);
+  return rank(next.v) > rank(pose.v) ? next : pose;
 }
 
 } // namespace
@@ -113,13 +129,22 @@ Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_
   e.hypotheses = rotationHypotheses(s, C, h_norm, e);
   std::vector<PoseVerification> v(e.hypotheses.size());
   bool verifiable = false;
+  const bool polish_on = canVerify(s);
   for (std::size_t k = 0; k < e.hypotheses.size(); ++k) {
     RotationHypothesis& h = e.hypotheses[k];
     const SpatialCorrelationResult shift =
         shiftOf(s.target.coarse, h.rotation * s.points, s.p.whitening, s.p, e);
     h.translation = shift.shift;
     h.overlap = shift.peak_value;
-    v[k] = verify(s, h.rotation, h.translation, e);
+    Pose pose;
+    pose.R = h.rotation;
+    pose.t = h.translation;
+    pose.v = verify(s, h.rotation, h.translation, e);
+    if (polish_on)
+      pose = polish(s, pose, e);
+    h.rotation = pose.R;
+    h.translation = pose.t;
+    v[k] = pose.v;
     h.inlier_fraction = v[k].inlier_fraction;
     h.verification_score = v[k].score;
     h.free_space_violation = v[k].free_space_violation;
@@ -157,7 +182,8 @@ Pose reprojectionPasses(const SourceContext& s, Pose pose, PhaserEstimate& e)
         std::make_shared<So3CorrelationGrid>(correlateRotation(s.target, H, s.p, e));
     Pose next;
     next.verifiable = pose.verifiable;
-    next.peak = C->argmax(s.p.num_threads);
+    next.peak = pose.verifiable ? C->argmaxNearIdentity(kHypothesisSeparation)
+                                : C->argmax(s.p.num_threads);
     next.grid = C;
     const Eigen::Matrix3d dR = rotationFromEuler(gridEuler(next.peak, s.p.bandwidth));
     next.R = dR * pose.R;
@@ -195,10 +221,14 @@ void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
   if (!pose.grid) {
     pose.grid =
         std::make_shared<So3CorrelationGrid>(correlateRotation(target, H, p, e));
-    pose.peak = pose.grid->argmax(p.num_threads);
+    // A polished pose is within a grid cell or two: its peak is the one near it.
+    pose.peak = pose.verifiable ? pose.grid->argmaxNearIdentity(kHypothesisSeparation)
+                                : pose.grid->argmax(p.num_threads);
     start = rotationFromEuler(gridEuler(pose.peak, p.bandwidth));
   }
-  const So3CorrelationGrid& C = *pose.grid;
+  // Held here: pose (and its grid) may be replaced below.
+  const std::shared_ptr<const So3CorrelationGrid> rotation_grid = pose.grid;
+  const So3CorrelationGrid& C = *rotation_grid;
   const So3GridIndex peak = pose.peak;
   double value = 0.0;
   const Eigen::Matrix3d dR = refine(target, H, support, start, p, value, e);
@@ -214,19 +244,25 @@ void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
   const SpatialCorrelationResult shift =
       shiftOf(grid, (next.R * s.points).colwise() + next.t, single ? p.whitening : 0.0,
               p, e, &volume, &energy);
-  next.t += shift.shift;
-  next.v = verify(s, next.R, next.t, e);
-  e.translation_score = shift.score;
-  e.normalized_overlap =
-      normalizedPeak(volume.values.empty() ? 0.0 : volumeAt(volume, shift.index),
-                     grid_energy * energy);
-  e.translation_covariance =
-      translationCovariance(volume, shift.index, grid_energy * energy);
-  rotationSamples(C, peak, dR * pose.R, e);
+  // A wrong pose can move the source out of the fine grid: then nothing was measured.
+  const bool measured = energy > 0.0;
+  if (measured) {
+    next.t += shift.shift;
+    next.v = verify(s, next.R, next.t, e);
+    e.translation_score = shift.score;
+    e.normalized_overlap =
+        normalizedPeak(volume.values.empty() ? 0.0 : volumeAt(volume, shift.index),
+                       grid_energy * energy);
+    e.translation_covariance =
+        translationCovariance(volume, shift.index, grid_energy * energy);
+  }
   e.rotation_score =
       value / (target.spherical_norm * std::sqrt(spectrumSquaredNorm(H)));
-  if (accept(next, pose))
+  if (measured && accept(next, pose))
     pose = next;
+  if (pose.verifiable)
+    pose = polish(s, pose, e);
+  rotationSamples(C, peak, pose.R, e);
   e.rotation = pose.R;
   e.translation = pose.t;
   e.inlier_fraction = pose.v.inlier_fraction;

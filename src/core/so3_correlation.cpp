@@ -196,6 +196,39 @@ So3GridIndex So3CorrelationGrid::argmax(int num_threads) const
   return best.empty() ? So3GridIndex{} : best[winner];
 }
 
+So3GridIndex So3CorrelationGrid::argmaxNearIdentity(double radius) const
+{
+  // ZYZ angles (alpha, beta, gamma) have the quaternion w = cos(beta / 2) cos((alpha +
+  // gamma) / 2), so the angle to the identity is 2 acos|w|; beta grows with the row.
+  const int N = size();
+  const int Bo = output_bandwidth_;
+  So3GridIndex best{}, nearest{};
+  double best_value = -std::numeric_limits<double>::infinity();
+  double nearest_angle = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < N; ++j) {
+    const double cos_half_beta = std::cos(0.5 * gridEuler({j, 0, 0}, Bo).beta);
+    if (2.0 * std::acos(cos_half_beta) > std::max(radius, nearest_angle))
+      break;
+    for (int a = 0; a < N; ++a) {
+      const double* row = data_ + (static_cast<std::size_t>(j) * N + a) * row_stride_;
+      for (int c = 0; c < N; ++c) {
+        const double half_sum = 0.5 * M_PI * (a + c) / Bo;
+        const double w = std::min(1.0, std::abs(cos_half_beta * std::cos(half_sum)));
+        const double angle = 2.0 * std::acos(w);
+        if (angle < nearest_angle) {
+          nearest_angle = angle;
+          nearest = {j, a, c};
+        }
+        if (angle <= radius && row[c] > best_value) {
+          best_value = row[c];
+          best = {j, a, c};
+        }
+      }
+    }
+  }
+  return best_value > -std::numeric_limits<double>::infinity() ? best : nearest;
+}
+
 // ---------------------------------------------------------------------------------------
 struct So3Correlator::Plan {
   detail::FftwPlan slice_c2r; // one in-place N x N c2r, run once per beta sample

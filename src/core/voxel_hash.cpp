@@ -113,13 +113,20 @@ double PointIndex::nearestSquaredDistance(const Eigen::Vector3d& q,
                                           const Eigen::Vector3d& normal,
                                           double min_cosine) const
 {
+  const Eigen::Index k = nearest(q, normal, min_cosine);
+  return k < 0 ? std::numeric_limits<double>::infinity()
+               : (points_.col(k) - q).squaredNorm();
+}
+
+Eigen::Index PointIndex::nearest(const Eigen::Vector3d& q,
+                                 const Eigen::Vector3d& normal, double min_cosine) const
+{
   const bool check = normals_.cols() != 0 && !normal.isZero();
-  constexpr double kNone = std::numeric_limits<double>::infinity();
   std::int64_t key = 0;
   if (points_.cols() == 0 || !voxelKey(q, radius_, key))
-    return kNone;
+    return -1;
   double best = radius_ * radius_;
-  bool found = false;
+  Eigen::Index found = -1;
   for (int dx = -1; dx <= 1; ++dx)
     for (int dy = -1; dy <= 1; ++dy)
       for (int dz = -1; dz <= 1; ++dz) {
@@ -133,11 +140,11 @@ double PointIndex::nearestSquaredDistance(const Eigen::Vector3d& q,
           const double d2 = (points_.col(k) - q).squaredNorm();
           if (d2 <= best) {
             best = d2;
-            found = true;
+            found = k;
           }
         }
       }
-  return found ? best : kNone;
+  return found;
 }
 
 } // namespace pcl_phaser

@@ -119,6 +119,51 @@ TEST(So3Correlation, ExactAtGridRotations)
   }
 }
 
+TEST(So3Correlation, ArgmaxNearIdentityIgnoresFartherPeaks)
+{
+  // F holds H rotated slightly and, twice as strong, H rotated by about 90 deg: the
+  // global maximum is the far copy, the search near the identity finds the near one.
+  std::mt19937 rng(5);
+  const int B = 8, N = 2 * B;
+  const SphericalSpectrum H = test::randomSpectrum(B, rng);
+  const So3GridIndex near_index{0, 1, N - 1}, far_index{N / 2, 3, 7};
+  const SphericalSpectrum near_copy =
+      test::rotateSpectrum(H, rotationFromEuler(gridEuler(near_index, B)));
+  const SphericalSpectrum far_copy =
+      test::rotateSpectrum(H, rotationFromEuler(gridEuler(far_index, B)));
+  const SphericalSpectrum F = near_copy + 2.0 * far_copy;
+  const So3CorrelationGrid C = So3Correlator::instance(B)->correlate(F, H);
+  const So3GridIndex global = C.argmax();
+  EXPECT_EQ(global.beta, far_index.beta);
+  const double radius = 10.0 * M_PI / 180.0;
+  const So3GridIndex local = C.argmaxNearIdentity(radius);
+  // Brute force over the whole grid.
+  double best = -1e300;
+  So3GridIndex expected{};
+  for (int j = 0; j < N; ++j)
+    for (int a = 0; a < N; ++a)
+      for (int c = 0; c < N; ++c) {
+        const So3GridIndex i{j, a, c};
+        const double angle = rotationDistance(rotationFromEuler(gridEuler(i, B)),
+                                              Eigen::Matrix3d::Identity());
+        if (angle <= radius && C(i) > best) {
+          best = C(i);
+          expected = i;
+        }
+      }
+  EXPECT_EQ(local.beta, expected.beta);
+  EXPECT_EQ(local.alpha, expected.alpha);
+  EXPECT_EQ(local.gamma, expected.gamma);
+  EXPECT_LE(rotationDistance(rotationFromEuler(gridEuler(local, B)),
+                             Eigen::Matrix3d::Identity()),
+            radius);
+  // No sample within the radius: the sample nearest the identity (beta_0 = pi / 4B).
+  const So3GridIndex nearest = C.argmaxNearIdentity(0.0);
+  EXPECT_NEAR(rotationDistance(rotationFromEuler(gridEuler(nearest, B)),
+                               Eigen::Matrix3d::Identity()),
+              M_PI / (4 * B), 1e-9);
+}
+
 TEST(So3Correlation, ZeroPaddingEqualsDirectEvaluation)
 {
   std::mt19937 rng(4);

@@ -42,6 +42,11 @@ public:
    *  \a num_threads. */
   So3GridIndex argmax(int num_threads = 1) const;
 
+  /** \brief Grid sample with the largest C among those within \a radius (radians,
+   *  geodesic angle) of the identity, ties to the lowest flat index; the sample nearest
+   *  the identity when none lies within \a radius. */
+  So3GridIndex argmaxNearIdentity(double radius) const;
+
 private:
   friend class So3Correlator;
   int output_bandwidth_ = 0;

@@ -54,6 +54,18 @@ public:
    *  >= \a min_cosine) or that have none; a zero \a normal accepts every point. */
   double nearestSquaredDistance(const Eigen::Vector3d& q, const Eigen::Vector3d& normal,
                                 double min_cosine) const;
+  /** \brief Index of the nearest point within radius() to \a q among those whose
+   *  normal agrees with \a normal (as nearestSquaredDistance), or -1 when none. */
+  Eigen::Index nearest(const Eigen::Vector3d& q, const Eigen::Vector3d& normal,
+                       double min_cosine) const;
+  /** \brief Point \a k (0 <= k < size()), in the index's own order. */
+  Eigen::Vector3d point(Eigen::Index k) const { return points_.col(k); }
+  /** \brief Normal of point \a k: zero when the index has none. */
+  Eigen::Vector3d normal(Eigen::Index k) const
+  {
+    return normals_.cols() != 0 ? Eigen::Vector3d(normals_.col(k))
+                                : Eigen::Vector3d::Zero();
+  }
   double radius() const { return radius_; }
   bool empty() const { return points_.cols() == 0; }
 

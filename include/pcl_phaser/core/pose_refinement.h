@@ -1,0 +1,40 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ */
+#pragma once
+
+#include <pcl_phaser/core/verification.h>
+
+#include <Eigen/Core>
+
+namespace pcl_phaser {
+
+/** \brief A rigid pose q_t = R q_s + t. */
+struct RigidPose {
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+};
+
+/** \brief Local refinement of a pose that verifyPose scores: Gauss-Newton steps on the
+ *  point-to-plane distances of the samples to their nearest target point within the
+ *  index radius r (with an agreeing normal), each weighted by the sample weight times
+ *  (1 - d^2 / r^2)^2, the derivative of the closeness that PoseVerification::score
+ *  averages. It climbs that score from a pose whose samples already partly touch the
+ *  target (a verified hypothesis, about half a coarse voxel off); it does not search.
+ *  Deterministic (serial sums in sample order).
+ *  \param[in] target target points with normals (samples without a matched normal
+ *  are skipped) \param[in] samples source samples with weights and normals
+ *  \param[in] start initial pose \param[in] iterations Gauss-Newton steps, >= 0
+ *  \return the refined pose; \a start when fewer than six samples match */
+RigidPose refinePose(const PointIndex& target, const VerificationSamples& samples,
+                     const RigidPose& start, int iterations);
+
+/** \brief refinePose within a trust region: \a start when the refined pose turned by
+ *  more than \a max_angle (radians) or moved the sensor by more than \a max_shift
+ *  (metres) from it (a climb that far left the basin it started in). */
+RigidPose refinePoseWithin(const PointIndex& target, const VerificationSamples& samples,
+                           const RigidPose& start, int iterations, double max_angle,
+                           double max_shift);
+
+} // namespace pcl_phaser

@@ -1,0 +1,85 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ */
+#include <pcl_phaser/core/pose_refinement.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+
+namespace pcl_phaser {
+
+namespace {
+
+/** exp of the skew matrix of \a w (Rodrigues). */
+Eigen::Matrix3d expSo3(const Eigen::Vector3d& w)
+{
+  const double angle = w.norm();
+  if (angle < 1e-12)
+    return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
+}
+
+} // namespace
+
+RigidPose refinePose(const PointIndex& target, const VerificationSamples& s,
+                     const RigidPose& start, int iterations)
+{
+  RigidPose pose = start;
+  const bool with_normals = s.normals.cols() == s.points.cols();
+  const double r2 = target.radius() * target.radius();
+  for (int it = 0; it < iterations; ++it) {
+    Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
+    Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
+    int matched = 0;
+    for (Eigen::Index i = 0; i < s.points.cols(); ++i) {
+      const Eigen::Vector3d q = pose.R * s.points.col(i) + pose.t;
+      const Eigen::Vector3d n_s = with_normals
+                                      ? Eigen::Vector3d(pose.R * s.normals.col(i))
+                                      : Eigen::Vector3d::Zero();
+      const Eigen::Index k = target.nearest(q, n_s, kMinNormalCosine);
+      if (k < 0)
+        continue;
+      const Eigen::Vector3d n = target.normal(k);
+      if (n.isZero())
+        continue;
+      const Eigen::Vector3d p = target.point(k);
+      const double closeness = 1.0 - (q - p).squaredNorm() / r2;
+      const double w = s.weights[i] * closeness * closeness;
+      Eigen::Matrix<double, 6, 1> J;
+      J << q.cross(n), n;
+      const double e = n.dot(q - p);
+      H += w * J * J.transpose();
+      g += w * e * J;
+      ++matched;
+    }
+    if (matched < 6)
+      break;
+    // A little damping keeps directions the matches leave free (ground only, one wall
+    // direction) where they are.
+    H.diagonal().array() += 1e-6 * H.trace() + 1e-12;
+    const Eigen::Matrix<double, 6, 1> delta = -H.ldlt().solve(g);
+    if (!delta.allFinite())
+      break;
+    const Eigen::Matrix3d dR = expSo3(delta.head<3>());
+    pose.R = dR * pose.R;
+    pose.t = dR * pose.t + delta.tail<3>();
+    if (delta.head<3>().norm() < 1e-5 && delta.tail<3>().norm() < 1e-4)
+      break;
+  }
+  return pose;
+}
+
+RigidPose refinePoseWithin(const PointIndex& target, const VerificationSamples& samples,
+                           const RigidPose& start, int iterations, double max_angle,
+                           double max_shift)
+{
+  const RigidPose refined = refinePose(target, samples, start, iterations);
+  const Eigen::AngleAxisd turn(refined.R * start.R.transpose());
+  // The source's origin (its sensor) lands at t: how far it moved.
+  if (std::abs(turn.angle()) > max_angle || (refined.t - start.t).norm() > max_shift)
+    return start;
+  return refined;
+}
+
+} // namespace pcl_phaser
