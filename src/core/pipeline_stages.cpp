@@ -99,6 +99,20 @@ bool canVerify(const SourceContext& s)
          s.target.thickness <= limit;
 }
 
+/** The residual rotation's correlation grid from the current viewpoint: only rotations
+ *  that tilt less than kResidualTilt (any yaw). */
+std::shared_ptr<So3CorrelationGrid>
+residualGrid(const SourceContext& s, const SphericalSpectrum& H, PhaserEstimate& e)
+{
+  const auto start = Clock::now();
+  const int rows = betaRowsForTilt(s.p.bandwidth, kResidualTilt);
+  auto C = std::make_shared<So3CorrelationGrid>(
+      So3Correlator::instance(s.p.bandwidth)
+          ->correlate(s.target.spherical, H, s.p.num_threads, rows));
+  e.so3_ms += msSince(start);
+  return C;
+}
+
 } // namespace
 
 /** Pass 1: every hypothesis through the coarse translation search and verification.
@@ -144,7 +158,8 @@ Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_
 
 /** Later passes: the source, moved by the estimate, is seen from the target's centre,
  *  so its range function no longer suffers the parallax of the source's viewpoint; the
- *  residual rotation (grid argmax) and a fine-grid shift are composed with the
+ *  residual rotation (grid argmax among the rotations that tilt less than
+ *  kResidualTilt) and a fine-grid shift are composed with the
  *  estimate, kept only while verification does not get worse. A pass whose shift
  *  update is below a quarter of a fine voxel started from the right viewpoint: stop. */
 Pose reprojectionPasses(const SourceContext& s, Pose pose, PhaserEstimate& e)
@@ -153,8 +168,7 @@ Pose reprojectionPasses(const SourceContext& s, Pose pose, PhaserEstimate& e)
   for (int pass = 1; pass < s.p.passes; ++pass) {
     const SphericalSpectrum H =
         sourceSpectrum((pose.R * s.points).colwise() + pose.t, s.channels, s.p, e);
-    auto C =
-        std::make_shared<So3CorrelationGrid>(correlateRotation(s.target, H, s.p, e));
+    const std::shared_ptr<So3CorrelationGrid> C = residualGrid(s, H, e);
     Pose next;
     next.verifiable = pose.verifiable;
     next.peak = C->argmax(s.p.num_threads);
@@ -190,11 +204,10 @@ void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
       sourceSpectrum((pose.R * s.points).colwise() + pose.t, s.channels, p, e,
                      p.normalized_refinement ? &support : nullptr);
   // After an accepted pass the residual is within the grid spacing: refine from the
-  // identity; else search the grid from this viewpoint first.
+  // identity; else search the residual grid (tilt below kResidualTilt) first.
   Eigen::Matrix3d start = Eigen::Matrix3d::Identity();
   if (!pose.grid) {
-    pose.grid =
-        std::make_shared<So3CorrelationGrid>(correlateRotation(target, H, p, e));
+    pose.grid = residualGrid(s, H, e);
     pose.peak = pose.grid->argmax(p.num_threads);
     start = rotationFromEuler(gridEuler(pose.peak, p.bandwidth));
   }
