@@ -79,7 +79,9 @@ void printHelp(int, char** argv)
       "    -icp                = refine with point-to-plane ICP "
       "(pcl::IterativeClosestPointWithNormals, normals\n"
       "                          from %d neighbours) from the PHASER estimate: %d "
-      "iterations, transformation epsilon %g\n"
+      "iterations, transformation epsilon %g, on both clouds\n"
+      "                          reduced to one point per voxel of a quarter of "
+      "--icp-dist\n"
       "    --icp-point         = with -icp: plain point-to-point "
       "pcl::IterativeClosestPoint instead\n"
       "    --icp-dist D        = ICP max correspondence distance in m (default: %g)\n"
@@ -201,6 +203,7 @@ int compute(const pcl::PCLPointCloud2& source_blob,
     icp.transformation_epsilon = icp_transformation_epsilon;
     icp.normal_neighbours = icp_normal_neighbours;
     icp.point_to_point = opt.icp_point;
+    icp.voxel_size = icp_voxel_fraction * opt.icp_distance;
     icp.threads = phaser.getNumberOfThreads();
     align::refine<PointT>(source, target, res.global.transform, icp, res.icp);
     print_info("[done, ");
