@@ -72,9 +72,10 @@ void printHelp(int, char** argv)
       "    --centre MODE       = projection centre: sensor (each cloud's origin, for "
       "LiDAR scans), centroid, or auto (sensor when both clouds surround their "
       "origin) (default: sensor)\n"
-      "    --threads T         = worker threads, 1..64 (default: %u; the demo: %d)\n",
+      "    --threads T         = worker threads, 1..64 (default: %u, one per hardware "
+      "thread; the demo: %d)\n",
       d.getBandwidth(), d.getSpatialGridSize(), d.getNumberOfPasses(),
-      d.getNumberOfThreads(), default_demo_threads);
+      static_cast<unsigned>(pcl_phaser::resolveThreadCount(0)), default_demo_threads);
   print_info(
       "    -icp                = refine with point-to-plane ICP "
       "(pcl::IterativeClosestPointWithNormals, normals\n"
@@ -180,7 +181,9 @@ int compute(const pcl::PCLPointCloud2& source_blob,
              source->size(), target->size(),
              pcl::traits::has_intensity_v<PointT> ? "PointXYZI" : "PointXYZ",
              phaser.getBandwidth(), phaser.getSpatialGridSize(),
-             phaser.getNumberOfPasses(), phaser.getNumberOfThreads(),
+             phaser.getNumberOfPasses(),
+             static_cast<unsigned>(
+                 pcl_phaser::resolveThreadCount(int(phaser.getNumberOfThreads()))),
              opt.centre.c_str());
   TicToc tt;
   tt.tic();

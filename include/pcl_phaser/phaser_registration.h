@@ -239,8 +239,9 @@ public:
   /** \brief Get the number of pyramid levels of the channel fusion. */
   int getFusionLevels() const { return params_.fusion_levels; }
 
-  /** \brief Set the number of worker threads (1..64); results are bit-identical for any
-   *  count. Default 1. \param[in] nr_threads number of threads */
+  /** \brief Set the number of worker threads (0..64); results are bit-identical for any
+   *  count. Default 0: one per hardware thread (PCL's convention).
+   *  \param[in] nr_threads number of threads, 0 for automatic */
   void setNumberOfThreads(unsigned int nr_threads)
   {
     params_.num_threads = static_cast<int>(nr_threads);

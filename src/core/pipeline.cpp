@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <omp.h>
 
 namespace pcl_phaser {
 
@@ -231,18 +232,26 @@ std::string validateParameters(const PhaserParameters& p)
   if (!(p.min_constraint >= 0.0 && p.min_constraint <= 1.0))
     return "minimum constraint must be in [0, 1], got " +
            std::to_string(p.min_constraint);
-  if (p.num_threads < 1 || p.num_threads > 64)
-    return "number of threads must be in [1, 64], got " + std::to_string(p.num_threads);
+  if (p.num_threads < 0 || p.num_threads > 64)
+    return "number of threads must be in [0, 64] (0: automatic), got " +
+           std::to_string(p.num_threads);
   return {};
 }
 
+int resolveThreadCount(int num_threads)
+{
+  return num_threads > 0 ? num_threads : std::clamp(omp_get_num_procs(), 1, 64);
+}
+
 std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
-                                                 const PhaserParameters& params,
+                                                 const PhaserParameters& requested,
                                                  const ChannelValues& raw_channels)
 {
-  const std::string problem = validateParameters(params);
+  const std::string problem = validateParameters(requested);
   if (!problem.empty())
     throw InvalidArgument(problem);
+  PhaserParameters params = requested;
+  params.num_threads = resolveThreadCount(requested.num_threads);
   const auto start = Clock::now();
   const ChannelValues channels = normalizeChannels(raw_channels, points.cols());
   auto model = std::make_shared<TargetModel>();
@@ -298,12 +307,14 @@ double preparationTime(const TargetModel& model)
 
 PhaserEstimate estimateTransform(const TargetModel& target,
                                  const Eigen::Matrix3Xd& points,
-                                 const PhaserParameters& p,
+                                 const PhaserParameters& requested,
                                  const ChannelValues& raw_channels)
 {
-  const std::string problem = validateParameters(p);
+  const std::string problem = validateParameters(requested);
   if (!problem.empty())
     throw InvalidArgument(problem);
+  PhaserParameters p = requested;
+  p.num_threads = resolveThreadCount(requested.num_threads);
   const PhaserParameters& m = target.params;
   if (m.bandwidth != p.bandwidth || m.spatial_grid_size != p.spatial_grid_size ||
       m.voxel_size != p.voxel_size || m.passes != p.passes ||

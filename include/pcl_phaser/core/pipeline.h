@@ -27,8 +27,11 @@ struct PhaserParameters {
   int refinement_iterations = 2; ///< Newton iterations on SO(3) (per stage), 0..10
   int fusion_levels = 5;       ///< Laplacian pyramid levels of the channel fusion, 1..8
   int rotation_candidates = 3; ///< distinct SO(3) peaks tried in pass 1, 1..10
-  int passes = 3;      ///< at most; 1: one global pass; 2+: re-project, re-correlate
-  int num_threads = 1; ///< worker threads, 1..64
+  int passes = 3; ///< at most; 1: one global pass; 2+: re-project, re-correlate
+  /** \brief Worker threads, 0..64; 0 (default): one per hardware thread
+   *  (omp_get_num_procs, at most 64), PCL's convention. Results are bit-identical for
+   *  any count. */
+  int num_threads = 0;
   /** \brief After the Newton refinement of plain C, refine again on the
    *  energy-normalised correlation (refineRotation with supports), within
    *  normalizedRefinementRadius(B) of the plain maximum. It removes most of the
@@ -89,6 +92,10 @@ inline double normalizedRefinementRadius(int bandwidth)
 {
   return kNormalizedRefinementRadius * 64.0 / bandwidth;
 }
+
+/** \brief The worker threads \a num_threads stands for: itself, or for 0 one per
+ *  hardware thread (at most 64). */
+int resolveThreadCount(int num_threads);
 
 /** \brief Empty when \a p is legal, else the reason (for PCL_ERROR). */
 std::string validateParameters(const PhaserParameters& p);
