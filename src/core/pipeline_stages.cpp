@@ -8,25 +8,74 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
+#include <vector>
 
 namespace pcl_phaser {
 namespace detail {
 
 namespace {
 
+/** Verification of the pose (R, t) with \a threads threads (default: the parameters').
+ */
 PoseVerification verify(const SourceContext& s, const Eigen::Matrix3d& R,
-                        const Eigen::Vector3d& t, PhaserEstimate& e)
+                        const Eigen::Vector3d& t, PhaserEstimate& e, int threads = 0)
 {
   const auto start = Clock::now();
-  PoseVerification v = verifyPose(s.target.index, s.samples, R, t, s.p.num_threads,
+  if (threads <= 0)
+    threads = s.p.num_threads;
+  PoseVerification v = verifyPose(s.target.index, s.samples, R, t, threads,
                                   s.p.sensor_centred ? &s.target.free_space : nullptr);
   // The other way: target samples in space the source's sensor saw through.
   if (s.p.sensor_centred)
     v.reverse_free_space_violation =
         freeSpaceViolation(s.free_space, s.target.samples, s.target.sample_weights,
-                           R.transpose(), -(R.transpose() * t), s.p.num_threads);
+                           R.transpose(), -(R.transpose() * t), threads);
   e.verification_ms += msSince(start);
   return v;
+}
+
+/** Every hypothesis through the coarse translation search and verification, into
+ *  e.hypotheses and \a v. The hypotheses are independent tasks, one thread each, in
+ *  one parallel region (no barrier inside a task, so a thread the scheduler parks
+ *  delays only its own task); each task's result does not depend on the thread count.
+ *  The stage times are the wall time of the region, split in the tasks' proportions. */
+void translateHypotheses(const SourceContext& s, PhaserEstimate& e,
+                         std::vector<PoseVerification>& v)
+{
+  const int n = static_cast<int>(e.hypotheses.size());
+  v.assign(e.hypotheses.size(), PoseVerification{});
+  PhaserParameters single = s.p;
+  single.num_threads = 1;
+  std::vector<PhaserEstimate> times(e.hypotheses.size());
+  std::vector<std::exception_ptr> failed(e.hypotheses.size());
+  const auto start = Clock::now();
+#pragma omp parallel for num_threads(std::max(1, std::min(s.p.num_threads, n)))        \
+    schedule(dynamic, 1)
+  for (int k = 0; k < n; ++k) {
+    try {
+      RotationHypothesis& h = e.hypotheses[static_cast<std::size_t>(k)];
+      const SpatialCorrelationResult shift = shiftOf(
+          s.target.coarse, h.rotation * s.points, s.p.whitening, single, times[k]);
+      h.translation = shift.shift;
+      h.overlap = shift.peak_value;
+      v[k] = verify(s, h.rotation, h.translation, times[k], 1);
+    } catch (...) {
+      failed[static_cast<std::size_t>(k)] = std::current_exception();
+    }
+  }
+  for (const std::exception_ptr& f : failed)
+    if (f)
+      std::rethrow_exception(f);
+  double translation = 0.0, verification = 0.0;
+  for (const PhaserEstimate& t : times) {
+    translation += t.translation_ms;
+    verification += t.verification_ms;
+  }
+  const double wall = msSince(start);
+  const double busy = translation + verification;
+  e.translation_ms += busy > 0.0 ? wall * translation / busy : 0.0;
+  e.verification_ms += busy > 0.0 ? wall * verification / busy : 0.0;
 }
 
 /** Rotation hypotheses: the distinct peaks of the range correlation \a C and of the
@@ -125,15 +174,11 @@ Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_
                   PhaserEstimate& e)
 {
   e.hypotheses = rotationHypotheses(s, C, h_norm, e);
-  std::vector<PoseVerification> v(e.hypotheses.size());
+  std::vector<PoseVerification> v;
+  translateHypotheses(s, e, v);
   bool verifiable = false;
   for (std::size_t k = 0; k < e.hypotheses.size(); ++k) {
     RotationHypothesis& h = e.hypotheses[k];
-    const SpatialCorrelationResult shift =
-        shiftOf(s.target.coarse, h.rotation * s.points, s.p.whitening, s.p, e);
-    h.translation = shift.shift;
-    h.overlap = shift.peak_value;
-    v[k] = verify(s, h.rotation, h.translation, e);
     h.inlier_fraction = v[k].inlier_fraction;
     h.verification_score = v[k].score;
     h.free_space_violation = v[k].free_space_violation;
