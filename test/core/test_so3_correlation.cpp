@@ -272,7 +272,7 @@ TEST(So3Correlation, TiltLimitedGridEqualsFullRows)
           EXPECT_EQ(part(j, a, c), -std::numeric_limits<double>::infinity());
       }
   EXPECT_LT(worst, 1e-12 * scale);
-  // The argmax stays inside the rows whose neighbours were computed, and is the best
+  // The argmax stays inside the rows whose neighbors were computed, and is the best
   // of them on the full grid.
   const So3GridIndex best = part.argmax(2);
   EXPECT_LT(best.beta, rows - 1);

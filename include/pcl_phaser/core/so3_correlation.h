@@ -43,7 +43,7 @@ public:
 
   /** \brief Grid sample with the largest C; ties go to the lowest flat index, for any
    *  \a num_threads. On a grid of limited tilt (So3Correlator::correlate with
-   *  beta_rows) only the rows whose beta neighbours were computed take part, so the
+   *  beta_rows) only the rows whose beta neighbors were computed take part, so the
    *  3 x 3 x 3 block around the result (rotationNeighbourhood) is always sampled. */
   So3GridIndex argmax(int num_threads = 1) const;
 
@@ -61,7 +61,7 @@ private:
 
 /** \brief Beta rows of the (2Bo)^3 grid that hold every rotation of tilt (Euler beta,
  *  which is at most the rotation angle) up to \a max_tilt radians, plus one row so the
- *  neighbourhood of each such sample is computed too; at most 2 Bo. */
+ *  neighborhood of each such sample is computed too; at most 2 Bo. */
 int betaRowsForTilt(int output_bandwidth, double max_tilt);
 
 /** \brief SO(3) correlation of two real spherical functions given by their spectra,
