@@ -72,14 +72,17 @@ void printHelp(int, char** argv)
       "    --centre MODE       = projection centre: sensor (each cloud's origin, for "
       "LiDAR scans), centroid, or auto (sensor when both clouds surround their "
       "origin) (default: sensor)\n"
-      "    --threads T         = worker threads, 1..64 (default: %u; the demo: %d)\n",
+      "    --threads T         = worker threads, 0..64 (default: %u, one per hardware "
+      "thread; the demo: %d)\n",
       d.getBandwidth(), d.getParameters().spatial_grid_size, d.getParameters().passes,
-      d.getNumberOfThreads(), default_demo_threads);
+      static_cast<unsigned>(pcl_phaser::resolveThreadCount(0)), default_demo_threads);
   print_info(
       "    -icp                = refine with point-to-plane ICP "
       "(pcl::IterativeClosestPointWithNormals, normals\n"
       "                          from %d neighbours) from the PHASER estimate: %d "
-      "iterations, transformation epsilon %g\n"
+      "iterations, transformation epsilon %g, on both clouds\n"
+      "                          reduced to one point per voxel of a quarter of "
+      "--icp-dist\n"
       "    --icp-point         = with -icp: plain point-to-point "
       "pcl::IterativeClosestPoint instead\n"
       "    --icp-dist D        = ICP max correspondence distance in m (default: %g)\n"
@@ -181,7 +184,9 @@ int compute(const pcl::PCLPointCloud2& source_blob,
              source->size(), target->size(),
              pcl::traits::has_intensity_v<PointT> ? "PointXYZI" : "PointXYZ",
              params.bandwidth, params.spatial_grid_size, params.passes,
-             phaser.getNumberOfThreads(), opt.centre.c_str());
+             static_cast<unsigned>(
+                 pcl_phaser::resolveThreadCount(int(phaser.getNumberOfThreads()))),
+             opt.centre.c_str());
   TicToc tt;
   tt.tic();
   Cloud aligned;
@@ -203,6 +208,7 @@ int compute(const pcl::PCLPointCloud2& source_blob,
     icp.transformation_epsilon = icp_transformation_epsilon;
     icp.normal_neighbours = icp_normal_neighbours;
     icp.point_to_point = opt.icp_point;
+    icp.voxel_size = icp_voxel_fraction * opt.icp_distance;
     icp.threads = phaser.getNumberOfThreads();
     align::refine<PointT>(source, target, res.global.transform, icp, res.icp);
     print_info("[done, ");

@@ -14,6 +14,7 @@
 #include <pcl/console/time.h>
 #include <pcl/features/normal_3d_omp.h>
 #include <pcl/filters/filter.h>
+#include <pcl/filters/voxel_grid.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/registration/icp.h>
@@ -171,24 +172,48 @@ struct IcpSettings {
   int normal_neighbours = 15;           ///< k of the normal estimation (point-to-plane)
   bool point_to_point = false;          ///< plain pcl::IterativeClosestPoint
   unsigned threads = 1;                 ///< threads of the normal estimation
+  /** \brief Edge (metres) of the pcl::VoxelGrid that both clouds are reduced to
+   *  before ICP (one centroid per occupied voxel), so refinement costs less than the
+   *  global stage; 0: the full clouds. */
+  double voxel_size = 0.0;
 };
 
+/** \brief \a cloud reduced to one centroid per occupied voxel of edge \a voxel_size,
+ *  or \a cloud itself when \a voxel_size is 0. */
+template <typename PointT>
+typename pcl::PointCloud<PointT>::Ptr
+downsample(const typename pcl::PointCloud<PointT>::Ptr& cloud, double voxel_size)
+{
+  if (!(voxel_size > 0.0))
+    return cloud;
+  auto out = pcl::make_shared<pcl::PointCloud<PointT>>();
+  pcl::VoxelGrid<PointT> grid;
+  const float leaf = static_cast<float>(voxel_size);
+  grid.setLeafSize(leaf, leaf, leaf);
+  grid.setInputCloud(cloud);
+  grid.filter(*out);
+  return out;
+}
+
 /** \brief ICP from \a guess, in double precision (which also keeps GCC 12's false
- * -Warray-bounds in PCL's float SVD estimation away). Point-to-plane by default:
+ * -Warray-bounds in PCL's float SVD estimation away), on the clouds reduced by
+ * downsample() to settings.voxel_size. Point-to-plane by default:
  * pcl::IterativeClosestPointWithNormals on copies of the clouds with normals from
  * pcl::NormalEstimationOMP (points whose normal is undefined are left out); with
- * point_to_point, plain pcl::IterativeClosestPoint on the clouds as they are.
+ * point_to_point, plain pcl::IterativeClosestPoint.
  * \param[in] source,target finite clouds
  * \param[in] guess the initial T_target_source
  * \param[in] settings ICP parameters
  * \param[out] s transform, converged, time_ms and ran */
 template <typename PointT>
-void refine(const typename pcl::PointCloud<PointT>::Ptr& source,
-            const typename pcl::PointCloud<PointT>::Ptr& target,
+void refine(const typename pcl::PointCloud<PointT>::Ptr& full_source,
+            const typename pcl::PointCloud<PointT>::Ptr& full_target,
             const Eigen::Matrix4d& guess, const IcpSettings& settings, Stage& s)
 {
   pcl::console::TicToc tt;
   tt.tic();
+  const auto source = downsample<PointT>(full_source, settings.voxel_size);
+  const auto target = downsample<PointT>(full_target, settings.voxel_size);
   const auto run = [&](auto& icp, const auto& src, const auto& tgt) {
     icp.setMaxCorrespondenceDistance(settings.max_distance);
     icp.setMaximumIterations(settings.iterations);

@@ -119,7 +119,8 @@ public:
   /** \brief Get the spherical bandwidth. */
   int getBandwidth() const { return params_.bandwidth; }
 
-  /** \brief Set the number of worker threads (1..64, default 1); results are
+  /** \brief Set the number of worker threads (0..64; 0, the default: one per hardware
+   *  thread); results are
    *  bit-identical for any count. \param[in] nr_threads number of threads */
   void setNumberOfThreads(unsigned int nr_threads)
   {

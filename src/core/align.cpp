@@ -180,6 +180,7 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
   StageParameters p;
   static_cast<PhaserParameters&>(p) = params;
   p.sensor_centred = center == ProjectionCenter::SensorOrigin;
+  p.num_threads = resolveThreadCount(params.num_threads);
   // The tilt pull the normalized refinement corrects comes from a scanner's
   // field-of-view band, seen about its origin; about a centroid there is none.
   p.normalized_refinement = params.normalized_refinement && p.sensor_centred;

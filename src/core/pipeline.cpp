@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <omp.h>
 
 namespace pcl_phaser {
 
@@ -231,13 +232,19 @@ std::string validateParameters(const PhaserParameters& p)
   if (!(p.min_constraint >= 0.0 && p.min_constraint <= 1.0))
     return "minimum constraint must be in [0, 1], got " +
            std::to_string(p.min_constraint);
-  if (p.num_threads < 1 || p.num_threads > 64)
-    return "number of threads must be in [1, 64], got " + std::to_string(p.num_threads);
+  if (p.num_threads < 0 || p.num_threads > 64)
+    return "number of threads must be in [0, 64] (0: automatic), got " +
+           std::to_string(p.num_threads);
   if (!(p.min_peak_score >= 0.0))
     return "the minimum peak score must be >= 0";
   if (!(p.min_normalized_overlap >= 0.0 && p.min_normalized_overlap <= 1.0))
     return "the minimum normalized overlap must be in [0, 1]";
   return {};
+}
+
+int resolveThreadCount(int num_threads)
+{
+  return num_threads > 0 ? num_threads : std::clamp(omp_get_num_procs(), 1, 64);
 }
 
 namespace detail {

@@ -84,6 +84,12 @@ using Clock = std::chrono::steady_clock;
 /** Rotation peaks closer than this are one hypothesis (a few grid cells at B = 64). */
 constexpr double kHypothesisSeparation = 10.0 * M_PI / 180.0;
 
+/** Largest tilt (radians; any yaw) of the residual rotation a re-projection pass, or
+ *  the final stage after none, searches for: the residual of a pass-1 hypothesis is a
+ *  few grid cells, so only the beta rows near the identity are correlated (about a
+ *  sixth of the SO(3) grid at B = 64). */
+constexpr double kResidualTilt = 20.0 * M_PI / 180.0;
+
 /** Verification radius, in coarse voxels. */
 constexpr double kVerificationVoxels = 0.5;
 

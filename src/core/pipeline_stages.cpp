@@ -8,23 +8,29 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
+#include <vector>
 
 namespace pcl_phaser {
 namespace detail {
 
 namespace {
 
+/** Verification of the pose (R, t) with \a threads threads (default: the parameters').
+ */
 PoseVerification verify(const SourceContext& s, const Eigen::Matrix3d& R,
-                        const Eigen::Vector3d& t, PhaserEstimate& e)
+                        const Eigen::Vector3d& t, PhaserEstimate& e, int threads = 0)
 {
   const auto start = Clock::now();
-  PoseVerification v = verifyPose(s.target.index, s.samples, R, t, s.p.num_threads,
+  if (threads <= 0)
+    threads = s.p.num_threads;
+  PoseVerification v = verifyPose(s.target.index, s.samples, R, t, threads,
                                   s.p.sensor_centred ? &s.target.free_space : nullptr);
   // The other way: target samples in space the source's sensor saw through.
   if (s.p.sensor_centred)
     v.reverse_free_space_violation =
         freeSpaceViolation(s.free_space, s.target.samples, s.target.sample_weights,
-                           R.transpose(), -(R.transpose() * t), s.p.num_threads);
+                           R.transpose(), -(R.transpose() * t), threads);
   e.verification_ms += msSince(start);
   return v;
 }
@@ -101,7 +107,8 @@ bool canVerify(const SourceContext& s)
 
 /** \a pose refined by refinePoseWithin (within the hypothesis separation and two
  *  coarse voxels), kept when it verifies better. */
-Pose polish(const SourceContext& s, const Pose& pose, PhaserEstimate& e)
+Pose polish(const SourceContext& s, const Pose& pose, PhaserEstimate& e,
+            int num_threads)
 {
   const auto start = Clock::now();
   const RigidPose refined =
@@ -111,8 +118,75 @@ Pose polish(const SourceContext& s, const Pose& pose, PhaserEstimate& e)
   Pose next = pose;
   next.R = refined.R;
   next.t = refined.t;
-  next.v = verify(s, next.R, next.t, e);
+  next.v = verify(s, next.R, next.t, e, num_threads);
   return rank(next.v) > rank(pose.v) ? next : pose;
+}
+
+/** The residual rotation's correlation grid from the current viewpoint: only rotations
+ *  that tilt less than kResidualTilt (any yaw). */
+std::shared_ptr<So3CorrelationGrid>
+residualGrid(const SourceContext& s, const SphericalSpectrum& H, PhaserEstimate& e)
+{
+  const auto start = Clock::now();
+  const int rows = betaRowsForTilt(s.p.bandwidth, kResidualTilt);
+  auto C = std::make_shared<So3CorrelationGrid>(
+      So3Correlator::instance(s.p.bandwidth)
+          ->correlate(s.target.spherical, H, s.p.num_threads, rows));
+  e.so3_ms += msSince(start);
+  return C;
+}
+
+/** Every hypothesis through the coarse translation search, polish (where poses can be
+ *  verified) and verification, into e.hypotheses and \a v. The hypotheses are
+ * independent tasks, one thread each, in one parallel region (no barrier inside a task,
+ * so a thread the scheduler parks delays only its own task); each task's result does
+ * not depend on the thread count. The stage times are the wall time of the region,
+ * split in the tasks' proportions. */
+void translateHypotheses(const SourceContext& s, PhaserEstimate& e,
+                         std::vector<PoseVerification>& v)
+{
+  const int n = static_cast<int>(e.hypotheses.size());
+  v.assign(e.hypotheses.size(), PoseVerification{});
+  PhaserParameters single = s.p;
+  single.num_threads = 1;
+  std::vector<PhaserEstimate> times(e.hypotheses.size());
+  std::vector<std::exception_ptr> failed(e.hypotheses.size());
+  const bool polish_on = canVerify(s);
+  const auto start = Clock::now();
+#pragma omp parallel for num_threads(std::max(1, std::min(s.p.num_threads, n)))        \
+    schedule(dynamic, 1)
+  for (int k = 0; k < n; ++k) {
+    try {
+      RotationHypothesis& h = e.hypotheses[static_cast<std::size_t>(k)];
+      const SpatialCorrelationResult shift = shiftOf(
+          s.target.coarse, h.rotation * s.points, s.p.whitening, single, times[k]);
+      h.translation = shift.shift;
+      h.overlap = shift.peak_value;
+      Pose pose;
+      pose.R = h.rotation;
+      pose.t = h.translation;
+      pose.v = verify(s, h.rotation, h.translation, times[k], 1);
+      if (polish_on)
+        pose = polish(s, pose, times[k], 1);
+      h.rotation = pose.R;
+      h.translation = pose.t;
+      v[k] = pose.v;
+    } catch (...) {
+      failed[static_cast<std::size_t>(k)] = std::current_exception();
+    }
+  }
+  for (const std::exception_ptr& f : failed)
+    if (f)
+      std::rethrow_exception(f);
+  double translation = 0.0, verification = 0.0;
+  for (const PhaserEstimate& t : times) {
+    translation += t.translation_ms;
+    verification += t.verification_ms;
+  }
+  const double wall = msSince(start);
+  const double busy = translation + verification;
+  e.translation_ms += busy > 0.0 ? wall * translation / busy : 0.0;
+  e.verification_ms += busy > 0.0 ? wall * verification / busy : 0.0;
 }
 
 } // namespace
@@ -127,24 +201,11 @@ Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_
                   PhaserEstimate& e)
 {
   e.hypotheses = rotationHypotheses(s, C, h_norm, e);
-  std::vector<PoseVerification> v(e.hypotheses.size());
+  std::vector<PoseVerification> v;
+  translateHypotheses(s, e, v);
   bool verifiable = false;
-  const bool polish_on = canVerify(s);
   for (std::size_t k = 0; k < e.hypotheses.size(); ++k) {
     RotationHypothesis& h = e.hypotheses[k];
-    const SpatialCorrelationResult shift =
-        shiftOf(s.target.coarse, h.rotation * s.points, s.p.whitening, s.p, e);
-    h.translation = shift.shift;
-    h.overlap = shift.peak_value;
-    Pose pose;
-    pose.R = h.rotation;
-    pose.t = h.translation;
-    pose.v = verify(s, h.rotation, h.translation, e);
-    if (polish_on)
-      pose = polish(s, pose, e);
-    h.rotation = pose.R;
-    h.translation = pose.t;
-    v[k] = pose.v;
     h.inlier_fraction = v[k].inlier_fraction;
     h.verification_score = v[k].score;
     h.free_space_violation = v[k].free_space_violation;
@@ -169,7 +230,8 @@ Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_
 
 /** Later passes: the source, moved by the estimate, is seen from the target's centre,
  *  so its range function no longer suffers the parallax of the source's viewpoint; the
- *  residual rotation (grid argmax) and a fine-grid shift are composed with the
+ *  residual rotation (grid argmax among the rotations that tilt less than
+ *  kResidualTilt) and a fine-grid shift are composed with the
  *  estimate, kept only while verification does not get worse. A pass whose shift
  *  update is below a quarter of a fine voxel started from the right viewpoint: stop. */
 Pose reprojectionPasses(const SourceContext& s, Pose pose, PhaserEstimate& e)
@@ -178,8 +240,7 @@ Pose reprojectionPasses(const SourceContext& s, Pose pose, PhaserEstimate& e)
   for (int pass = 1; pass < s.p.passes; ++pass) {
     const SphericalSpectrum H =
         sourceSpectrum((pose.R * s.points).colwise() + pose.t, s.channels, s.p, e);
-    auto C =
-        std::make_shared<So3CorrelationGrid>(correlateRotation(s.target, H, s.p, e));
+    const std::shared_ptr<So3CorrelationGrid> C = residualGrid(s, H, e);
     Pose next;
     next.verifiable = pose.verifiable;
     next.peak = pose.verifiable ? C->argmaxNearIdentity(kHypothesisSeparation)
@@ -216,11 +277,10 @@ void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
       sourceSpectrum((pose.R * s.points).colwise() + pose.t, s.channels, p, e,
                      p.normalized_refinement ? &support : nullptr);
   // After an accepted pass the residual is within the grid spacing: refine from the
-  // identity; else search the grid from this viewpoint first.
+  // identity; else search the residual grid (tilt below kResidualTilt) first.
   Eigen::Matrix3d start = Eigen::Matrix3d::Identity();
   if (!pose.grid) {
-    pose.grid =
-        std::make_shared<So3CorrelationGrid>(correlateRotation(target, H, p, e));
+    pose.grid = residualGrid(s, H, e);
     // A polished pose is within a grid cell or two: its peak is the one near it.
     pose.peak = pose.verifiable ? pose.grid->argmaxNearIdentity(kHypothesisSeparation)
                                 : pose.grid->argmax(p.num_threads);
@@ -261,7 +321,7 @@ void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
   if (measured && accept(next, pose))
     pose = next;
   if (pose.verifiable)
-    pose = polish(s, pose, e);
+    pose = polish(s, pose, e, p.num_threads);
   rotationSamples(C, peak, pose.R, e);
   e.rotation = pose.R;
   e.translation = pose.t;

@@ -150,16 +150,19 @@ evaluateAccumulate(const WignerStepTable& steps, int L, int B, int K, int P, int
 // ---------------------------------------------------------------------------------------
 So3CorrelationGrid::So3CorrelationGrid(So3CorrelationGrid&& o) noexcept
     : output_bandwidth_(o.output_bandwidth_)
+    , beta_rows_(o.beta_rows_)
     , row_stride_(o.row_stride_)
     , data_(o.data_)
 {
   o.data_ = nullptr;
   o.output_bandwidth_ = 0;
+  o.beta_rows_ = 0;
 }
 
 So3CorrelationGrid& So3CorrelationGrid::operator=(So3CorrelationGrid&& o) noexcept
 {
   std::swap(output_bandwidth_, o.output_bandwidth_);
+  std::swap(beta_rows_, o.beta_rows_);
   std::swap(row_stride_, o.row_stride_);
   std::swap(data_, o.data_);
   return *this;
@@ -176,11 +179,12 @@ So3GridIndex So3CorrelationGrid::argmax(int num_threads) const
   // The best of each beta row (first on ties), then the rows in order: the first
   // maximum in flat order whatever the thread count.
   const int N = size();
-  std::vector<So3GridIndex> best(static_cast<std::size_t>(N));
-  std::vector<double> best_value(static_cast<std::size_t>(N),
+  const int rows = beta_rows_ < N ? std::max(1, beta_rows_ - 1) : N;
+  std::vector<So3GridIndex> best(static_cast<std::size_t>(rows));
+  std::vector<double> best_value(static_cast<std::size_t>(rows),
                                  -std::numeric_limits<double>::infinity());
 #pragma omp parallel for num_threads(std::max(1, num_threads)) schedule(static)
-  for (int j = 0; j < N; ++j)
+  for (int j = 0; j < rows; ++j)
     for (int a = 0; a < N; ++a) {
       const double* row = data_ + (static_cast<std::size_t>(j) * N + a) * row_stride_;
       for (int c = 0; c < N; ++c)
@@ -276,14 +280,34 @@ So3Correlator::So3Correlator(int bandwidth, int output_bandwidth)
 
 So3Correlator::~So3Correlator() = default;
 
+int betaRowsForTilt(int output_bandwidth, double max_tilt)
+{
+  checkBandwidth(output_bandwidth, "output bandwidth");
+  const int N = 2 * output_bandwidth;
+  if (!(max_tilt >= 0.0))
+    throw InvalidArgument("betaRowsForTilt: the tilt must be >= 0");
+  // beta_j = pi (2j + 1) / (4 Bo) <= max_tilt for j <= (4 Bo max_tilt / pi - 1) / 2.
+  const double last =
+      std::floor((4.0 * output_bandwidth * max_tilt / M_PI - 1.0) / 2.0);
+  if (!(last < N))
+    return N;
+  return std::min(N, std::max(0, static_cast<int>(last) + 1) + 1);
+}
+
 So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
                                             const SphericalSpectrum& source,
-                                            int num_threads) const
+                                            int num_threads, int beta_rows) const
 {
   const int B = bandwidth_;
   const int Bo = output_bandwidth_;
   const int N = 2 * Bo;
-  const int J = Bo; // beta_j for j < Bo; the mirrored half comes from d(pi - beta)
+  if (beta_rows < 0)
+    throw InvalidArgument("So3Correlator::correlate: beta_rows must be >= 0");
+  const int rows = beta_rows == 0 ? N : std::min(beta_rows, N);
+  // beta_j for j < Bo; the mirrored half (rows N-1-j) comes from d(pi - beta). With a
+  // tilt limit the recurrence runs over the rows j < min(rows, Bo) and the mirrored
+  // rows it yields are kept only when they are below \a rows too.
+  const int J = std::min(Bo, rows);
   const std::size_t nh = Bo + 1;
   const std::size_t slice = static_cast<std::size_t>(N) * nh;
   checkSpectrum(target, B, "target");
@@ -292,8 +316,10 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
 
   So3CorrelationGrid grid;
   grid.output_bandwidth_ = Bo;
+  grid.beta_rows_ = rows;
   grid.row_stride_ = 2 * nh;
-  grid.data_ = static_cast<double*>(fftw_malloc(sizeof(fftw_complex) * slice * N));
+  // Only the computed rows are stored (operator() gives -infinity beyond them).
+  grid.data_ = static_cast<double*>(fftw_malloc(sizeof(fftw_complex) * slice * rows));
   if (!grid.data_)
     throw std::bad_alloc();
   Complex* T = reinterpret_cast<Complex*>(grid.data_);
@@ -303,7 +329,7 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
     // Zero what the Wigner stage does not write: orders |m'| >= B (rows p in [B, N-B])
     // and m >= B (columns q in [B, Bo]), Nyquist included.
 #pragma omp for schedule(static)
-    for (int s = 0; s < N; ++s)
+    for (int s = 0; s < rows; ++s)
       for (int p = 0; p < N; ++p) {
         Complex* row = T + s * slice + p * nh;
         const bool unused_row = p >= B && p <= N - B;
@@ -339,13 +365,14 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
         const int p1 = wrap(mp, N), p2 = wrap(-mp, N);
         for (int j = 0; j < J; ++j) {
           T[j * slice + p1 * nh + m] = Complex(a1r[j], -a1i[j]);
-          T[(N - 1 - j) * slice + p2 * nh + m] = Complex(a2r[j], -a2i[j]);
+          if (N - 1 - j < rows)
+            T[(N - 1 - j) * slice + p2 * nh + m] = Complex(a2r[j], -a2i[j]);
         }
       }
     }
 
 #pragma omp for schedule(static)
-    for (int s = 0; s < N; ++s) {
+    for (int s = 0; s < rows; ++s) {
       fftw_complex* in = reinterpret_cast<fftw_complex*>(T + s * slice);
       fftw_execute_dft_c2r(plan_->slice_c2r.get(), in, reinterpret_cast<double*>(in));
     }

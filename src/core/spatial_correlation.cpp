@@ -152,20 +152,19 @@ SpatialVolume voxelizeImpl(const SpatialGrid& grid, const Eigen::Matrix3Xd& poin
         }
       }
     }
-  }
-
-  // Mean value times soft occupancy (see the header for why).
-  const std::ptrdiff_t total = static_cast<std::ptrdiff_t>(grid.size());
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::ptrdiff_t i = 0; i < total; ++i) {
-    const double w = volume.values[i];
-    if (w <= 0.0) {
-      volume.values[i] = 0.0;
-      continue;
+    // Mean value times soft occupancy (see the header for why), while the slab is in
+    // cache: no other slab reads it.
+    const std::size_t end = (static_cast<std::size_t>(x) + 1) * slab;
+    for (std::size_t i = static_cast<std::size_t>(x) * slab; i < end; ++i) {
+      const double w = volume.values[i];
+      if (w <= 0.0) {
+        volume.values[i] = 0.0;
+        continue;
+      }
+      const double occupancy =
+          saturation > 0.0 ? -saturation * std::expm1(-w / saturation) : w;
+      volume.values[i] = values ? (weighted[i] / w) * occupancy : occupancy;
     }
-    const double occupancy =
-        saturation > 0.0 ? -saturation * std::expm1(-w / saturation) : w;
-    volume.values[i] = values ? (weighted[i] / w) * occupancy : occupancy;
   }
   return volume;
 }

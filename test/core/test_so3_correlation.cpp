@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <thread>
 
@@ -290,4 +291,44 @@ TEST(So3Correlation, BandwidthOneIsConstant)
     for (int a = 0; a < 2; ++a)
       for (int c = 0; c < 2; ++c)
         EXPECT_NEAR(C(j, a, c), 6.0, 1e-14);
+}
+
+TEST(So3Correlation, TiltLimitedGridEqualsFullRows)
+{
+  std::mt19937 rng(5);
+  const int B = 16, N = 2 * B;
+  const SphericalSpectrum F = test::randomSpectrum(B, rng);
+  const SphericalSpectrum H = test::randomSpectrum(B, rng);
+  const auto corr = So3Correlator::instance(B);
+  const So3CorrelationGrid full = corr->correlate(F, H, 2);
+  const int rows = betaRowsForTilt(B, 20.0 * kDeg);
+  // beta_j = (2j + 1) 180 / (4 B) deg: rows 0..3 are within 20 deg, plus one more.
+  EXPECT_EQ(rows, 5);
+  const So3CorrelationGrid part = corr->correlate(F, H, 2, rows);
+  EXPECT_EQ(part.betaRows(), rows);
+  double worst = 0.0, scale = 0.0;
+  for (int j = 0; j < N; ++j)
+    for (int a = 0; a < N; ++a)
+      for (int c = 0; c < N; ++c) {
+        scale = std::max(scale, std::abs(full(j, a, c)));
+        if (j < rows)
+          worst = std::max(worst, std::abs(part(j, a, c) - full(j, a, c)));
+        else
+          EXPECT_EQ(part(j, a, c), -std::numeric_limits<double>::infinity());
+      }
+  EXPECT_LT(worst, 1e-12 * scale);
+  // The argmax stays inside the rows whose neighbors were computed, and is the best
+  // of them on the full grid.
+  const So3GridIndex best = part.argmax(2);
+  EXPECT_LT(best.beta, rows - 1);
+  for (int j = 0; j < rows - 1; ++j)
+    for (int a = 0; a < N; ++a)
+      for (int c = 0; c < N; ++c)
+        EXPECT_LE(full(j, a, c), full(best) + 1e-12 * scale);
+  EXPECT_EQ(part.argmax(1).alpha, best.alpha);
+  EXPECT_EQ(part.argmax(1).gamma, best.gamma);
+  EXPECT_EQ(betaRowsForTilt(B, M_PI), N);
+  EXPECT_EQ(betaRowsForTilt(B, 0.0), 1);
+  EXPECT_THROW(betaRowsForTilt(B, -1.0), InvalidArgument);
+  EXPECT_THROW(corr->correlate(F, H, 1, -1), InvalidArgument);
 }

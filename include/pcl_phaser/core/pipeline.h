@@ -59,8 +59,9 @@ struct PhaserParameters {
    *  center and measures the residual shift on a fine grid over the target's inner
    *  region. They stop once a shift update is below a quarter of a fine voxel. */
   int passes = 3;
-  /** \brief Worker threads, 1..64; results are bit-identical for any count. */
-  int num_threads = 1;
+  /** \brief Worker threads, 0..64; 0: one per hardware thread (at most 64), PCL's
+   *  convention. Results are bit-identical for any count. */
+  int num_threads = 0;
   /** \brief Refine the rotation again on the energy-normalized SO(3) correlation,
    *  within 0.75 deg x 64 / B of the maximum of the plain one, when the clouds are
    *  projected about their sensor origins (about centroids the plain refinement is
@@ -98,6 +99,10 @@ struct PhaserParameters {
    *  (doc/benchmarks.md section 5). */
   double min_normalized_overlap = 0.55;
 };
+
+/** \brief The worker threads \a num_threads stands for: itself, or for 0 one per
+ *  hardware thread (at most 64). */
+int resolveThreadCount(int num_threads);
 
 /** \brief Empty when every field of \a p is in its range, else the reason. */
 std::string validateParameters(const PhaserParameters& p);

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -28,9 +29,11 @@ public:
   /** \brief Samples per axis, N = 2 Bo. */
   int size() const { return 2 * output_bandwidth_; }
 
-  /** \brief C(alpha_a, beta_j, gamma_c). */
+  /** \brief C(alpha_a, beta_j, gamma_c); -infinity for rows j >= betaRows(). */
   double operator()(int j, int a, int c) const
   {
+    if (j >= beta_rows_)
+      return -std::numeric_limits<double>::infinity();
     return data_[(static_cast<std::size_t>(j) * size() + a) * row_stride_ + c];
   }
   double operator()(const So3GridIndex& i) const
@@ -39,7 +42,9 @@ public:
   }
 
   /** \brief Grid sample with the largest C; ties go to the lowest flat index, for any
-   *  \a num_threads. */
+   *  \a num_threads. On a grid of limited tilt (So3Correlator::correlate with
+   *  beta_rows) only the rows whose beta neighbors were computed take part, so the
+   *  3 x 3 x 3 block around the result (rotationNeighbourhood) is always sampled. */
   So3GridIndex argmax(int num_threads = 1) const;
 
   /** \brief Grid sample with the largest C among those within \a radius (radians,
@@ -47,12 +52,22 @@ public:
    *  the identity when none lies within \a radius. */
   So3GridIndex argmaxNearIdentity(double radius) const;
 
+  /** \brief Beta rows computed: rows j < betaRows() hold C, the others -infinity
+   *  (size() unless the correlation was limited in tilt). */
+  int betaRows() const { return beta_rows_; }
+
 private:
   friend class So3Correlator;
   int output_bandwidth_ = 0;
+  int beta_rows_ = 0;
   std::size_t row_stride_ = 0; // 2 (Bo + 1): in-place c2r rows are padded
-  double* data_ = nullptr;     // fftw_malloc'ed, N * N * row_stride_ doubles
+  double* data_ = nullptr;     // fftw_malloc'ed, beta_rows_ * N * row_stride_ doubles
 };
+
+/** \brief Beta rows of the (2Bo)^3 grid that hold every rotation of tilt (Euler beta,
+ *  which is at most the rotation angle) up to \a max_tilt radians, plus one row so the
+ *  neighborhood of each such sample is computed too; at most 2 Bo. */
+int betaRowsForTilt(int output_bandwidth, double max_tilt);
 
 /** \brief SO(3) correlation of two real spherical functions given by their spectra,
  *  Kostelec-Rockmore style: Wigner-d recurrence in l, then one 2-D c2r FFT per beta
@@ -82,10 +97,15 @@ public:
    *  \param[in] target spectrum f (B x B), conjugated in the correlation
    *  \param[in] source spectrum h (B x B)
    *  \param[in] num_threads worker threads (>= 1)
+   *  \param[in] beta_rows 0 (default): the whole grid; else only the rotations of tilt
+   *  beta_j with j < beta_rows (any alpha and gamma), the rest of the grid is
+   *  -infinity. A search near the identity (e.g. the residual of a re-projection pass)
+   *  then costs about beta_rows / Bo of the whole grid; betaRowsForTilt gives the
+   *  count for a tilt.
    *  \throws InvalidArgument when a spectrum is not B x B */
   So3CorrelationGrid correlate(const SphericalSpectrum& target,
-                               const SphericalSpectrum& source,
-                               int num_threads = 1) const;
+                               const SphericalSpectrum& source, int num_threads = 1,
+                               int beta_rows = 0) const;
 
 private:
   int bandwidth_;
