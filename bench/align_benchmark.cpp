@@ -13,10 +13,10 @@
  * on the energy-normalised correlation (setNormalizedRefinement(false)). Timings are
  * wall-clock.
  */
+#include "cloud_reading.h"
 #include "fft_yardstick.h"
 #include "scan_simulator.h"
 
-#include <pcl_phaser/cloud_io.h>
 #include <pcl_phaser/phaser_registration.h>
 
 #include <pcl/console/parse.h>
