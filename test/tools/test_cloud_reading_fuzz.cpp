@@ -3,8 +3,8 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  *
  * Cloud reading robustness sweeps: truncations, random byte changes, header numbers.
- * Each load forks a reader (a few ms), so the body of a file is cut at every 7th byte
- * and its header at every byte.
+ * Each load forks a reader (a few ms), so a header is cut at every 3rd byte and a body
+ * at every 11th.
  */
 #include "cloud_reading_test_support.h"
 
@@ -80,9 +80,10 @@ TEST(CloudIoFuzz, EveryTruncation)
     std::size_t header_end = bytes.find("DATA "); // PCD
     if (header_end == std::string::npos)
       header_end = bytes.find("end_header"); // PLY
-    const std::size_t every_byte =
+    const std::size_t header_bytes =
         header_end == std::string::npos ? 64 : header_end + 32;
-    for (std::size_t size = 0; size < bytes.size(); size += size < every_byte ? 1 : 7) {
+    for (std::size_t size = 0; size < bytes.size();
+         size += size < header_bytes ? 3 : 11) {
       writeFile(path, bytes.substr(0, size));
       loadAndCheckInvariants(path, name + " cut at " + std::to_string(size));
     }
