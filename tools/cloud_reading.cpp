@@ -129,7 +129,8 @@ public:
   {
     if (size > bytes_.size() - pos_)
       return (false);
-    std::memcpy(out, bytes_.data() + pos_, size);
+    if (size > 0) // out may be the null data() of an empty vector
+      std::memcpy(out, bytes_.data() + pos_, size);
     pos_ += size;
     return (true);
   }
