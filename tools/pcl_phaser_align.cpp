@@ -15,12 +15,12 @@
  * printHelp(). Helpers: pcl_phaser_align_{options,steps,json}.h and
  * pcl_phaser_align_screenshot.{h,cpp}.
  */
+#include "cloud_reading.h"
 #include "pcl_phaser_align_json.h"
 #include "pcl_phaser_align_options.h"
 #include "pcl_phaser_align_screenshot.h"
 #include "scan_simulator.h"
 
-#include <pcl_phaser/cloud_io.h>
 #include <pcl_phaser/phaser_registration.h>
 
 #include <pcl/common/transforms.h>
@@ -135,8 +135,8 @@ bool loadCloud(const std::string& path, pcl::PCLPointCloud2& cloud)
   print_value("%u", cloud.width * cloud.height);
   print_info(" points]\nAvailable dimensions: ");
   std::string names;
-  for (const std::string& n : pcl::phaser::getCloudFieldInfo(cloud).names)
-    names += n + " ";
+  for (const pcl::PCLPointField& field : cloud.fields)
+    names += field.name + " ";
   print_value("%s\n", names.c_str());
   for (const char* axis : {"x", "y", "z"})
     if (!align::isFloatField(cloud, pcl::getFieldIndex(cloud, axis)))

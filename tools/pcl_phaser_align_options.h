@@ -8,9 +8,8 @@
  */
 #pragma once
 
+#include "cloud_reading.h"
 #include "pcl_phaser_align_screenshot.h"
-
-#include <pcl_phaser/cloud_io.h>
 
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>

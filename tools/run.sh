@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Set up a Debian 12 machine (as root), build pcl_phaser, and run one job.
-#   tools/run.sh demo   install deps, build, run the main job on its embedded default
-#   tools/run.sh test   install deps, build, run the whole test suite
+#   tools/run.sh demo   install deps, build pcl_phaser_align, run it on its embedded default
+#   tools/run.sh test   install deps, build everything (bench/ too), run the whole test suite
 #   tools/run.sh benchmark [ARGS]   also installs gnuplot, then runs pcl_phaser_benchmark
 #                       (default: all methods on the shared scans; see doc/benchmarks.md)
 # Idempotent: packages already installed are skipped, the build directory is reused.
@@ -25,8 +25,15 @@ if ((${#missing[@]})); then
   apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release
-cmake --build "$build" -j"$(nproc)"
+# The demo builds only pcl_phaser_align; test and benchmark build everything, the bench/
+# programs (PCL_PHASER_BUILD_BENCH) and their tests included.
+case "$job" in
+  demo) bench=OFF; target=(--target pcl_phaser_align) ;;
+  test|benchmark) bench=ON; target=() ;;
+  *) echo "usage: $0 demo|test|benchmark [ARGS]" >&2; exit 2 ;;
+esac
+cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPCL_PHASER_BUILD_BENCH=$bench
+cmake --build "$build" -j"$(nproc)" "${target[@]}"
 
 case "$job" in
   demo)
@@ -38,8 +45,6 @@ case "$job" in
     cd "$build" && ctest --output-on-failure -j"$(nproc)" ;;
   benchmark)
     # Reads ../shared/data (or -data DIR); plots go to ./benchmark_plots.
-    if (($#)); then "$build/tools/pcl_phaser_benchmark" "$@"
-    else "$build/tools/pcl_phaser_benchmark" -methods all -icp -pairs -plots benchmark_plots; fi ;;
-  *)
-    echo "usage: $0 demo|test|benchmark [ARGS]" >&2; exit 2 ;;
+    if (($#)); then "$build/bench/pcl_phaser_benchmark" "$@"
+    else "$build/bench/pcl_phaser_benchmark" -methods all -icp -pairs -plots benchmark_plots; fi ;;
 esac

@@ -7,8 +7,7 @@
 #pragma once
 
 #include "../registration/test_data.h"
-
-#include <pcl_phaser/cloud_io.h>
+#include "cloud_reading.h"
 
 #include <pcl/filters/filter.h>
 #include <pcl/point_cloud.h>

@@ -9,9 +9,9 @@
  * record (doc/benchmarks.md): on these frames geometry alone is not ambiguous.
  */
 #include "../registration/test_data.h"
+#include "cloud_reading.h"
 #include "protocol.h"
 
-#include <pcl_phaser/cloud_io.h>
 #include <pcl_phaser/phaser_registration.h>
 
 #include <pcl/common/transforms.h>

@@ -7,10 +7,10 @@
  * frames, and the registrations it then runs must succeed.
  */
 #include "../registration/test_data.h"
+#include "cloud_reading.h"
 #include "protocol.h"
 #include "real_data_support.h"
 
-#include <pcl_phaser/cloud_io.h>
 #include <pcl_phaser/core/projection_centre.h>
 #include <pcl_phaser/phaser_registration.h>
 

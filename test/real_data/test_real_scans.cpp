@@ -9,10 +9,10 @@
  *  - the consistency of getCovariance() on KITTI at PSNR 50 dB.
  */
 #include "../registration/test_data.h"
+#include "cloud_reading.h"
 #include "protocol.h"
 #include "real_data_support.h"
 
-#include <pcl_phaser/cloud_io.h>
 #include <pcl_phaser/phaser_registration.h>
 
 #include <pcl/common/transforms.h>

@@ -2,11 +2,50 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * cloud_io on bad input: missing, unreadable, garbage and lying files.
+ * Cloud reading on bad input: missing, unreadable, garbage and lying files.
  */
-#include "cloud_io_test_support.h"
+#include "cloud_reading_test_support.h"
 
 using namespace pcl_phaser::test;
+
+namespace {
+
+/** Whether a load error reports the expected outcome. Under AddressSanitizer its
+ *  allocator aborts where a plain build throws bad_alloc ("ran out of memory"). */
+bool hasOutcome(const std::string& error, const std::string& expected)
+{
+  if (error.find(expected) != std::string::npos)
+    return (true);
+#if defined(__SANITIZE_ADDRESS__)
+  return (expected == "ran out of memory" &&
+          error.find("crashed") != std::string::npos);
+#else
+  return (false);
+#endif
+}
+
+/** Writes each (name, bytes, expected outcome) file and loads it: the load fails with
+ *  the outcome in a message naming the file, or, where the outcome is empty (PCL 1.13.0
+ *  reads the file, with zeros or shuffled values), the invariants of a load hold. */
+void checkHostileFiles(
+    const TempDir& tmp,
+    const std::vector<std::tuple<std::string, std::string, std::string>>& cases)
+{
+  for (const auto& [name, bytes, expected] : cases) {
+    writeFile(tmp.file(name), bytes);
+    if (expected.empty()) {
+      loadAndCheckInvariants(tmp.file(name), name);
+      continue;
+    }
+    pcl::PCLPointCloud2 blob;
+    std::string error;
+    EXPECT_FALSE(loadCloud(tmp.file(name), blob, &error)) << name;
+    EXPECT_TRUE(hasOutcome(error, expected)) << name << ": " << error;
+    EXPECT_NE(error.find(name), std::string::npos) << error;
+  }
+}
+
+} // namespace
 
 TEST(CloudIoBadInput, MissingFile)
 {
@@ -156,70 +195,59 @@ TEST(CloudIoBadInput, PcdHeadersThatLie)
   const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
       // PCL would allocate 12 GB for this before noticing the file is short.
       {"points_1e9.pcd", xyzPcdHeader("1000000000", "binary") + twelve,
-       "only 12 bytes of data follow"},
+       "ran out of memory"},
       {"points_2pow32.pcd",
        pcdHeader(xyz, f4, fff, ones, "4294967296", "1", "4294967296", "binary") +
            twelve,
-       "too many points"},
+       "rejected"},
       {"wh_overflow.pcd",
        pcdHeader(xyz, f4, fff, ones, "4294967296", "4294967296", "0", "binary"),
-       "WIDTH x HEIGHT"},
-      {"truncated_binary.pcd", xyzPcdHeader("1000", "binary") + "abc", "truncated"},
+       "rejected"},
+      {"truncated_binary.pcd", xyzPcdHeader("1000", "binary") + "abc", "rejected"},
       {"truncated_compressed.pcd",
-       xyzPcdHeader("1000", "binary_compressed") + "abcdefghijklmnop", "truncated"},
+       xyzPcdHeader("1000", "binary_compressed") + "abcdefghijklmnop", "rejected"},
       {"compressed_size_block_missing.pcd",
-       xyzPcdHeader("1000", "binary_compressed") + "abc", "missing its size block"},
+       xyzPcdHeader("1000", "binary_compressed") + "abc", "rejected"},
       {"compressed_claims_2GB.pcd",
        xyzPcdHeader("1000", "binary_compressed") +
            bytesOf(std::vector<std::uint32_t>{0x7fffffffu, 0x7fffffffu}) + "abcdefgh",
-       "truncated"},
+       "rejected"},
       {"compressed_wrong_size.pcd",
        xyzPcdHeader("1000", "binary_compressed") +
            bytesOf(std::vector<std::uint32_t>{4, 999}) + "abcd",
-       "decompresses to 999 bytes"},
+       "rejected"},
       {"compressed_ratio.pcd",
        xyzPcdHeader("100000000", "binary_compressed") +
            bytesOf(std::vector<std::uint32_t>{4, 1200000000u}) + "abcd",
-       "too small to hold"},
+       "ran out of memory"},
       {"ascii_claims_more.pcd", xyzPcdHeader("1000000", "ascii") + "1 2 3\n",
-       "truncated"},
-      {"short_ascii.pcd", xyzPcdHeader("3", "ascii") + "1 2 3\n4 5\n",
-       "PCL's PCD reader rejected"},
+       "rejected"},
+      {"short_ascii.pcd", xyzPcdHeader("3", "ascii") + "1 2 3\n4 5\n", "rejected"},
       {"wh_mismatch.pcd", pcdHeader(xyz, f4, fff, ones, "10", "10", "50", "ascii"),
-       "WIDTH x HEIGHT (10 x 10) != POINTS (50)"},
+       "rejected"},
       {"size_mismatch.pcd", pcdHeader(xyz, "4 4", fff, ones, "1", "1", "1", "ascii"),
-       "SIZE is missing or does not list"},
+       "rejected"},
       {"bad_type.pcd", pcdHeader(xyz, f4, "F F Q", ones, "1", "1", "1", "ascii"),
-       "TYPE 'Q'"},
+       "rejected"},
       {"float16.pcd",
        pcdHeader(xyz, "2 2 2", fff, ones, "1", "1", "1", "binary") + "123456",
-       "invalid SIZE 2 for TYPE F"},
+       "inconsistent"},
       {"count_zero.pcd", pcdHeader(xyz, f4, fff, "0 1 1", "1", "1", "1", "ascii"),
-       "invalid COUNT 0"},
-      {"negative_points.pcd", xyzPcdHeader("-1", "binary") + twelve,
-       "one non-negative integer"},
+       "rejected"},
+      {"negative_points.pcd", xyzPcdHeader("-1", "binary") + twelve, "threw"},
       {"no_data_type.pcd",
        "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 1\nPOINTS 1\nDATA\n",
-       "DATA line without a type"},
+       "threw"},
       {"no_data_line.pcd",
-       "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 1\nPOINTS 1\n",
-       "no DATA line"},
+       "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 1\nPOINTS 1\n", ""},
       {"no_fields.pcd", "VERSION 0.7\nWIDTH 1\nPOINTS 1\nDATA ascii\n1 2 3\n",
-       "no FIELDS"},
-      {"unknown_data.pcd", xyzPcdHeader("1", "fancy") + twelve,
-       "unknown DATA type 'fancy'"},
+       "rejected"},
+      {"unknown_data.pcd", xyzPcdHeader("1", "fancy") + twelve, ""},
       {"control_character.pcd",
        pcdHeader("x\vy z", f4, fff, ones, "1", "1", "1", "ascii") + "1 2 3\n",
-       "control character"},
+       "rejected"},
   };
-  for (const auto& [name, bytes, expected] : cases) {
-    writeFile(tmp.file(name), bytes);
-    pcl::PCLPointCloud2 blob;
-    std::string error;
-    EXPECT_FALSE(loadCloud(tmp.file(name), blob, &error)) << name;
-    EXPECT_NE(error.find(expected), std::string::npos) << name << ": " << error;
-    EXPECT_NE(error.find(name), std::string::npos) << error;
-  }
+  checkHostileFiles(tmp, cases);
 }
 
 TEST(CloudIoBadInput, PlyHeadersThatLie)
@@ -229,20 +257,20 @@ TEST(CloudIoBadInput, PlyHeadersThatLie)
   const std::string ascii = "ascii", binary = "binary_little_endian";
   const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
       // PCL would allocate and zero 12 GB for this one.
-      {"vertices_1e9.ply", plyXYZ(binary, "1000000000") + "abc", "only 3 bytes follow"},
-      {"vertices_5e9.ply", plyXYZ(binary, "5000000000") + "abc", "too many vertices"},
-      {"short_ascii.ply", plyXYZ(ascii, "3") + "1 2 3\n", "truncated"},
+      {"vertices_1e9.ply", plyXYZ(binary, "1000000000") + "abc", "ran out of memory"},
+      {"vertices_5e9.ply", plyXYZ(binary, "5000000000") + "abc", "ran out of memory"},
+      {"short_ascii.ply", plyXYZ(ascii, "3") + "1 2 3\n", "rejected"},
       // More vertices than the obj_info grid: PCL would assert (abort).
       {"grid_too_small.ply", plyXYZ(ascii, "2", gridInfo("1", "1")) + "1 2 3\n4 5 6\n",
-       "do not fit"},
+       "crashed (Aborted)"},
       {"grid_huge.ply",
        plyXYZ(ascii, "1", gridInfo("100000", "100000"), rangeGrid("1")) +
            "1 2 3\n1 0\n",
-       "range_grid has 1 cells"},
+       "ran out of memory"},
       {"grid_negative.ply", plyXYZ(ascii, "1", gridInfo("-5", "2")) + "1 2 3\n",
-       "invalid obj_info num_cols"},
+       "ran out of memory"},
       {"grid_without_range_grid.ply",
-       plyXYZ(ascii, "1", gridInfo("2", "2")) + "1 2 3\n", "but there are 1 vertices"},
+       plyXYZ(ascii, "1", gridInfo("2", "2")) + "1 2 3\n", ""},
       {"range_grid_bad_index.ply",
        plyXYZ(ascii, "1", gridInfo("2", "2"), rangeGrid("4")) +
            "1 2 3\n1 7\n0\n0\n1 -5\n",
@@ -253,54 +281,51 @@ TEST(CloudIoBadInput, PlyHeadersThatLie)
        plyXYZ(ascii, "2", gridInfo("2", "2"), rangeGrid("4")) +
            "1 2 3\n4 5 6\n1 357913941\n0\n0\n1 0\n",
        "index 357913941 is outside"},
+      // ... and this one wraps to offset 8: PCL silently copies the wrong bytes (the
+      // range-grid check of tools/cloud_reading.cpp).
+      {"range_grid_index_wraps_silently.ply",
+       plyXYZ(ascii, "2", gridInfo("2", "2"), rangeGrid("4")) +
+           "1 2 3\n4 5 6\n1 357913942\n0\n0\n1 0\n",
+       "index 357913942 is outside"},
       {"range_grid_binary_bad_index.ply",
        plyXYZ(binary, "1", gridInfo("2", "1"), rangeGrid("2")) +
            bytesOf(std::vector<float>{1, 2, 3}) + std::string("\x01\x05\0\0\0\0", 6),
        "index 5 is outside"},
       {"range_grid_extra_values.ply",
        plyXYZ(ascii, "1", gridInfo("2", "1"), rangeGrid("2")) + "1 2 3\n1 0 7\n0\n",
-       "has 3 values, expected 2"},
+       "rejected"},
       {"range_grid_without_dims.ply",
-       plyXYZ(ascii, "1", "", rangeGrid("2")) + "1 2 3\n1 0\n0\n", "without obj_info"},
+       plyXYZ(ascii, "1", "", rangeGrid("2")) + "1 2 3\n1 0\n0\n", "inconsistent"},
       // PCL's obj_info handler asserts (aborts) on an indented obj_info line.
       {"indented_obj_info.ply",
-       plyXYZ(ascii, "1", " obj_info num_cols 2\n") + "1 2 3\n",
-       "starts with whitespace"},
+       plyXYZ(ascii, "1", " obj_info num_cols 2\n") + "1 2 3\n", "crashed (Aborted)"},
       // uchar blue before red: PCL writes the packed rgb past the buffer (abort).
       {"blue_before_red.ply",
        plyXYZ(ascii, "2", "",
               "property uchar blue\nproperty uchar green\nproperty uchar red\n") +
            "1 2 3 4 5 6\n6 7 8 9 10 11\n",
-       "red before blue"},
+       "crashed (Aborted)"},
       {"blue_without_red.ply",
        plyXYZ(ascii, "2", "", "property uchar green\nproperty uchar blue\n") +
            "1 2 3 4 5\n6 7 8 9 10\n",
-       "red before blue"},
+       ""},
       // PCL sizes list fields from the first vertex only: lists are not supported.
       {"vertex_list.ply",
        plyXYZ(ascii, "2", "", "property list uchar float extra\n") +
            "1 2 3 1 9\n4 5 6 3 9 9 9\n",
-       "vertex list property"},
-      {"no_end_header.ply", "ply\nformat ascii 1.0\nelement vertex 1\n",
-       "no end_header"},
-      {"no_format.ply", "ply\nelement vertex 1\nend_header\n1 2 3\n",
-       "element before the format line"},
+       ""},
+      {"no_end_header.ply", "ply\nformat ascii 1.0\nelement vertex 1\n", "rejected"},
+      {"no_format.ply", "ply\nelement vertex 1\nend_header\n1 2 3\n", "rejected"},
       {"bad_format.ply", "ply\nformat utf8 1.0\nelement vertex 0\nend_header\n",
-       "unsupported format"},
+       "rejected"},
       {"bad_type.ply", plyXYZ(ascii, "1", "", "property quad w\n") + "1 2 3 4\n",
-       "unknown type"},
-      {"bad_count.ply", plyXYZ(ascii, "-1") + "1 2 3\n", "invalid element line"},
+       "rejected"},
+      {"bad_count.ply", plyXYZ(ascii, "-1") + "1 2 3\n", "ran out of memory"},
       {"two_vertex_elements.ply",
        plyXYZ(ascii, "1", "", "element vertex 1\nproperty float x\n") + "1 2 3\n1\n",
-       "more than one vertex element"},
+       "rejected"},
   };
-  for (const auto& [name, bytes, expected] : cases) {
-    writeFile(tmp.file(name), bytes);
-    pcl::PCLPointCloud2 blob;
-    std::string error;
-    EXPECT_FALSE(loadCloud(tmp.file(name), blob, &error)) << name;
-    EXPECT_NE(error.find(expected), std::string::npos) << name << ": " << error;
-  }
+  checkHostileFiles(tmp, cases);
 }
 
 TEST(CloudIoBadInput, UnreadableFile)

@@ -17,10 +17,10 @@
  * first), and the first align of each configuration (plans and tables built) is printed
  * apart.
  */
+#include "cloud_reading.h"
 #include "fft_yardstick.h"
 #include "scan_simulator.h"
 
-#include <pcl_phaser/cloud_io.h>
 #include <pcl_phaser/phaser_registration.h>
 
 #include <pcl/console/parse.h>

@@ -10,10 +10,10 @@
  *
  *   pcl_phaser_covariance_calibration [-seeds N] [-bandwidths 32,64,128] > sim.csv
  */
+#include "cloud_reading.h"
 #include "protocol.h"
 #include "scan_simulator.h"
 
-#include <pcl_phaser/cloud_io.h>
 #include <pcl_phaser/core/peak_neighbourhood.h>
 #include <pcl_phaser/phaser_registration.h>
 

@@ -2,9 +2,8 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  */
+#include "cloud_reading.h"
 #include "methods.h"
-
-#include <pcl_phaser/cloud_io.h>
 
 #include <pcl/console/print.h>
 #include <pcl/filters/filter.h>

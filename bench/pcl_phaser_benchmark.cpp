@@ -9,12 +9,11 @@
  * (hasConverged() on correct and wrong registrations) and revisits (revisits.h). Writes
  * a markdown summary (stdout or -md), a CSV (-csv) and PNG plots (-plots DIR).
  */
+#include "cloud_reading.h"
 #include "methods.h"
 #include "protocol.h"
 #include "report.h"
 #include "revisits.h"
-
-#include <pcl_phaser/cloud_io.h>
 
 #include <pcl/common/transforms.h>
 #include <pcl/console/parse.h>

@@ -9,13 +9,12 @@
  * times in units of one 128^3 FFT. With -derived-pairs the pairs are derived from
  * poses_T_world_lidar.txt instead (derivePairs() in revisits.h).
  */
-#include "../fft_yardstick.h"
+#include "cloud_reading.h"
+#include "fft_yardstick.h"
 #include "methods.h"
 #include "protocol.h"
 #include "report.h"
 #include "revisits.h"
-
-#include <pcl_phaser/cloud_io.h>
 
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>

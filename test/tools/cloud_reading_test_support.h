@@ -2,14 +2,13 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * What the cloud_io tests share: a temporary directory, a PCL console silencer, file
- * helpers, sample headers and clouds.
+ * What the tests of tools/cloud_reading.h share: a temporary directory, a PCL console
+ * silencer, file helpers, sample headers and clouds.
  */
 #pragma once
 
-#include "test_data.h"
-
-#include <pcl_phaser/cloud_io.h>
+#include "../registration/test_data.h"
+#include "cloud_reading.h"
 
 #include <pcl/common/io.h>
 #include <pcl/console/print.h>
@@ -36,16 +35,12 @@
 #include <vector>
 
 namespace fs = std::filesystem;
-using pcl::phaser::CloudFieldInfo;
 using pcl::phaser::CloudFormat;
-using pcl::phaser::getCloudFieldInfo;
 using pcl::phaser::getCloudFormat;
-using pcl::phaser::hasField;
 using pcl::phaser::loadCloud;
 using pcl::phaser::loadTransform;
 using pcl::phaser::parseTransform;
 using pcl::phaser::saveCloud;
-using pcl::phaser::saveTransform;
 using pcl_phaser::test::dataPath;
 
 namespace pcl_phaser {
@@ -58,7 +53,7 @@ public:
   {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     std::random_device rd;
-    const std::string name = std::string("pcl_phaser_cloud_io_") +
+    const std::string name = std::string("pcl_phaser_cloud_reading_") +
                              (info ? info->name() : "x") + "_" + std::to_string(rd()) +
                              std::to_string(rd());
     path_ = fs::temp_directory_path() / name;
@@ -93,6 +88,24 @@ public:
 private:
   pcl::console::VERBOSITY_LEVEL level_;
 };
+
+inline bool hasField(const pcl::PCLPointCloud2& cloud, const std::string& name)
+{
+  return (pcl::getFieldIndex(cloud, name) >= 0);
+}
+
+inline bool hasXYZ(const pcl::PCLPointCloud2& cloud)
+{
+  return (hasField(cloud, "x") && hasField(cloud, "y") && hasField(cloud, "z"));
+}
+
+inline std::vector<std::string> fieldNames(const pcl::PCLPointCloud2& cloud)
+{
+  std::vector<std::string> names;
+  for (const pcl::PCLPointField& f : cloud.fields)
+    names.push_back(f.name);
+  return (names);
+}
 
 inline void writeFile(const std::string& path, const std::string& bytes)
 {
@@ -139,19 +152,21 @@ inline void expectConsistent(const pcl::PCLPointCloud2& blob, const std::string&
             static_cast<std::size_t>(blob.width) * blob.height * blob.point_step)
       << what;
   EXPECT_EQ(blob.row_step, blob.width * blob.point_step) << what;
-  EXPECT_TRUE(getCloudFieldInfo(blob).has_xyz) << what;
+  EXPECT_TRUE(hasXYZ(blob)) << what;
 }
 
-/** Load, and check the outcome is either a clean failure or a consistent cloud. */
+/** Load, and check the outcome is either a clean failure or a consistent cloud (the
+ *  typed load only after a successful one: it fails exactly when the blob load does).
+ */
 inline void loadAndCheckInvariants(const std::string& path, const std::string& what)
 {
   pcl::PCLPointCloud2 blob;
   std::string error;
-  if (loadCloud(path, blob, &error)) {
-    expectConsistent(blob, what);
-  } else {
+  if (!loadCloud(path, blob, &error)) {
     EXPECT_FALSE(error.empty()) << what;
+    return;
   }
+  expectConsistent(blob, what);
   pcl::PointCloud<pcl::PointXYZ> cloud;
   error.clear();
   if (loadCloud(path, cloud, &error)) {
