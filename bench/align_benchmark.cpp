@@ -10,7 +10,7 @@
  *                              [-range_only] [-plain] [-busy]
  * -range_only switches the intensity channel off, so the two runs show what fusing one
  * extra channel costs per stage; -plain refines the rotation on plain C only, not also
- * on the energy-normalised correlation (PhaserParameters::normalized_refinement =
+ * on the energy-normalized correlation (PhaserParameters::normalized_refinement =
  * false); -busy keeps one core busy with a spinning child process during the aligns (as
  * `yes > /dev/null` would: a robot running other nodes). Timings are wall-clock; every
  * stage is printed in ms and in FFT units (one 128^3 r2c FFT on one thread, measured
@@ -176,7 +176,7 @@ int main(int argc, char** argv)
       "Each cell: ms / FFT units. \"first\": the first align of the configuration "
       "(tables and plans built the first time).\n\n",
       name.c_str(), source->size(), target->size(), bandwidth,
-      range_only ? "range" : "range + intensity", normalized ? "normalised" : "plain",
+      range_only ? "range" : "range + intensity", normalized ? "normalized" : "plain",
       reps, busy ? ", one core kept busy by a spinning process" : "", unit);
   std::printf("| threads | target | total | first | target prep | sampling | SHT "
               "| SO(3) corr | refinement | translation | orientation | verification "

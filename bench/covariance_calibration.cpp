@@ -5,7 +5,7 @@
  * pcl_phaser_covariance_calibration: registers simulated LiDAR pairs (makeDemoPair,
  * exact truth) and prints, per pair and bandwidth, the pose error and the ingredients
  * of getCovariance() as CSV. The rotation model-error scale (kRotationModelErrorScale
- * in peak_neighbourhood.h) was fitted on this output, so that the real scans of
+ * in peak_neighborhood.h) was fitted on this output, so that the real scans of
  * pcl_phaser_benchmark -study nees stay held out.
  *
  *   pcl_phaser_covariance_calibration [-seeds N] [-bandwidths 32,64,128] > sim.csv
@@ -14,7 +14,7 @@
 #include "protocol.h"
 #include "scan_simulator.h"
 
-#include <pcl_phaser/core/peak_neighbourhood.h>
+#include <pcl_phaser/core/peak_neighborhood.h>
 #include <pcl_phaser/phaser_registration.h>
 
 #include <pcl/common/transforms.h>

@@ -27,7 +27,7 @@ struct MethodSettings {
   bool centroid = false; ///< pcl_phaser: project about the centroids
   int threads = 2;
   int bandwidth = 64;                ///< pcl_phaser spherical bandwidth
-  unsigned seed = 1;                 ///< std::srand seed of PCL's randomised aligners
+  unsigned seed = 1;                 ///< std::srand seed of PCL's randomized aligners
   int fpcs_seconds = 10;             ///< time limit of FPCS / KFPCS
   bool normalized_refinement = true; ///< pcl_phaser's setNormalizedRefinement
 };
@@ -40,7 +40,7 @@ struct MethodResult {
   /** the method's own quality figure: pcl_phaser's translation peak score, else
    * PCL's fitness score (mean squared distance, m^2) */
   double score = std::numeric_limits<double>::quiet_NaN();
-  /** pcl_phaser's normalised overlap of the aligned grids (NaN for other methods) */
+  /** pcl_phaser's normalized overlap of the aligned grids (NaN for other methods) */
   double overlap = std::numeric_limits<double>::quiet_NaN();
   bool has_covariance = false;
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();

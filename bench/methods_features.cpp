@@ -37,7 +37,7 @@ Described describe(const Cloud& cloud, const MethodSettings& settings)
   ne.setInputCloud(d.points);
   ne.setRadiusSearch(2.0 * settings.voxel);
   ne.compute(*normals);
-  // FPFH needs finite normals: drop the points whose neighbourhood was degenerate.
+  // FPFH needs finite normals: drop the points whose neighborhood was degenerate.
   auto points = pcl::make_shared<pcl::PointCloud<XYZ>>();
   auto kept_normals = pcl::make_shared<pcl::PointCloud<pcl::Normal>>();
   for (std::size_t i = 0; i < normals->size(); ++i)

@@ -2,7 +2,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * PCL's local aligners, started from identity (to show why a global initialiser is
+ * PCL's local aligners, started from identity (to show why a global initializer is
  * needed), and the ICP refinement that may follow any method.
  */
 #include "methods.h"

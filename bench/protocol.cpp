@@ -148,10 +148,10 @@ void applyCondition(const Condition& condition, Cloud& cloud, std::mt19937& rng)
     keepIf(cloud, [&](const PointT&) { return u01(rng) < condition.value; });
     break;
   case Condition::Kind::Overlap: {
-    const double centre = (2.0 * u01(rng) - 1.0) * M_PI;
+    const double center = (2.0 * u01(rng) - 1.0) * M_PI;
     const double half_width = condition.value * M_PI;
     keepIf(cloud, [&](const PointT& p) {
-      const double d = std::remainder(std::atan2(p.y, p.x) - centre, 2.0 * M_PI);
+      const double d = std::remainder(std::atan2(p.y, p.x) - center, 2.0 * M_PI);
       return std::abs(d) <= half_width;
     });
     break;

@@ -25,10 +25,10 @@ using Cloud = pcl::PointCloud<PointT>;
 /** \brief Rotation error in degrees: the angle of R_est^T R_true. */
 double rreDeg(const Eigen::Matrix4d& estimate, const Eigen::Matrix4d& truth);
 
-/** \brief Translation error in metres: |t_est - t_true|. */
+/** \brief Translation error in meters: |t_est - t_true|. */
 double rteM(const Eigen::Matrix4d& estimate, const Eigen::Matrix4d& truth);
 
-/** \brief A uniform random rotation (normalised Gaussian quaternion) and a translation
+/** \brief A uniform random rotation (normalized Gaussian quaternion) and a translation
  * uniform in the ball of radius \a t_max. */
 Eigen::Matrix4d randomPose(std::mt19937& rng, double t_max);
 
@@ -56,7 +56,7 @@ bool parseCondition(const std::string& text, Condition& condition);
  *    10^(PSNR/20), i_max the largest intensity (the paper's protocol).
  *  - Sparsity: keeps each point with probability \a value.
  *  - Overlap: keeps the points whose azimuth about the origin lies in a sector of
- *    \a value x 360 deg centred on a random direction (what a sensor with a narrower
+ *    \a value x 360 deg centered on a random direction (what a sensor with a narrower
  *    horizontal field of view would have seen).
  * The cloud stays dense (non-finite points are expected to have been removed). */
 void applyCondition(const Condition& condition, Cloud& cloud, std::mt19937& rng);

@@ -23,7 +23,7 @@ struct Summary {
   double median_rre = NAN, median_rte = NAN, median_ms = NAN, p90_ms = NAN;
 };
 
-Summary summarise(const std::vector<const Trial*>& group)
+Summary summarize(const std::vector<const Trial*>& group)
 {
   Summary s;
   std::vector<double> rre, rte, ms;
@@ -106,7 +106,7 @@ void writeSummary(std::ostream& out, const std::vector<Trial>& trials, bool by_s
       const auto it = per_method.find(m);
       if (it == per_method.end())
         continue;
-      const Summary s = summarise(it->second);
+      const Summary s = summarize(it->second);
       out << "| " << name << " | " << m << " | " << s.n << " | "
           << formatValue("%.0f %%", 100.0 * s.ok / s.n) << " | "
           << formatValue("%.2f", s.median_rre) << " | "
@@ -215,7 +215,7 @@ std::vector<std::string> writePlots(const std::string& dir,
     for (const auto& [method, points] : series) {
       dat << "\"" << method << "\"\n";
       for (const auto& [value, group] : points) {
-        const Summary s = summarise(group);
+        const Summary s = summarize(group);
         const double x = sweep == "noise" ? value : 100.0 * value;
         // gnuplot skips NaN (its "missing" setting breaks columnheader titles)
         dat << x << " " << 100.0 * s.ok / s.n << " "

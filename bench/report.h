@@ -26,7 +26,7 @@ struct Trial {
   bool converged = false;   ///< the method's own verdict
   bool success = false;     ///< RRE and RTE under the thresholds
   double score = 0.0;       ///< the method's quality figure (see MethodResult)
-  double overlap = 0.0;     ///< pcl_phaser's normalised overlap (NaN for others)
+  double overlap = 0.0;     ///< pcl_phaser's normalized overlap (NaN for others)
   double nees = -1.0;       ///< 6-D NEES under the method's covariance, -1 without one
   double nees_rot = -1.0;   ///< 3-D NEES of the rotation error under its own block
   double nees_trans = -1.0; ///< 3-D NEES of the translation error under its own block

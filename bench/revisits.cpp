@@ -248,7 +248,7 @@ struct BinSummary {
   double median_rre = NAN, median_rte = NAN, median_ms = NAN;
 };
 
-BinSummary summarise(const std::vector<RevisitTrial>& trials, const std::string& method,
+BinSummary summarize(const std::vector<RevisitTrial>& trials, const std::string& method,
                      const Bin& bin)
 {
   BinSummary s;
@@ -283,7 +283,7 @@ void writeTable(std::ostream& out, const std::vector<RevisitTrial>& trials,
          "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const std::string& method : methods)
     for (const Bin& bin : bins()) {
-      const BinSummary s = summarise(trials, method, bin);
+      const BinSummary s = summarize(trials, method, bin);
       out << "| " << method << " | " << bin.label << " | " << s.n << " | "
           << formatValue("%.0f %%", s.n ? 100.0 * s.ok_a / s.n : NAN) << " | "
           << formatValue("%.0f %%", s.n ? 100.0 * s.ok_b / s.n : NAN) << " | "
@@ -307,7 +307,7 @@ std::string writePlot(const std::string& dir, const std::vector<RevisitTrial>& t
   for (const std::string& method : methods) {
     dat << "# " << method << ": bin, label, success @2 m (%), success @0.6 m (%), n\n";
     for (std::size_t b = 0; b < kDisjointBins; ++b) {
-      const BinSummary s = summarise(trials, method, bins()[b]);
+      const BinSummary s = summarize(trials, method, bins()[b]);
       // gnuplot skips NaN (empty bins)
       dat << b << " \"" << bins()[b].label << "\" "
           << (s.n ? formatValue("%g", 100.0 * s.ok_a / s.n) : "NaN") << " "

@@ -3,7 +3,7 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  *
  * pcl_phaser_benchmark -study revisits: the global aligners on the real revisit pairs
- * of lidar/balm_handheld (two scans of one place taken metres apart, reference poses
+ * of lidar/balm_handheld (two scans of one place taken meters apart, reference poses
  * from LiDAR-inertial odometry), binned by the distance between the scans. It has its
  * own options (see printRevisitsHelp()).
  *

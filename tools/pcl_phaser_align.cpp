@@ -69,7 +69,7 @@ void printHelp(int, char** argv)
       "    --grid N            = translation grid voxels along the longest axis, "
       "8..1024 (default: %d)\n"
       "    --passes K          = registration passes, 1..5 (default: %d)\n"
-      "    --centre MODE       = projection centre: sensor (each cloud's origin, for "
+      "    --center MODE       = projection center: sensor (each cloud's origin, for "
       "LiDAR scans), centroid, or auto (sensor when both clouds surround their "
       "origin) (default: sensor)\n"
       "    --threads T         = worker threads, 0..64 (default: %u, one per hardware "
@@ -79,7 +79,7 @@ void printHelp(int, char** argv)
   print_info(
       "    -icp                = refine with point-to-plane ICP "
       "(pcl::IterativeClosestPointWithNormals, normals\n"
-      "                          from %d neighbours) from the PHASER estimate: %d "
+      "                          from %d neighbors) from the PHASER estimate: %d "
       "iterations, transformation epsilon %g, on both clouds\n"
       "                          reduced to one point per voxel of a quarter of "
       "--icp-dist\n"
@@ -97,7 +97,7 @@ void printHelp(int, char** argv)
       "RRE (deg) and RTE (m)\n"
       "    --json              = print one JSON object on stdout, everything else on "
       "stderr\n",
-      icp_normal_neighbours, icp_iterations, icp_transformation_epsilon,
+      icp_normal_neighbors, icp_iterations, icp_transformation_epsilon,
       default_icp_distance, default_width, default_height);
   print_info(
       "    --demo              = the embedded demo, also run with no arguments: a "
@@ -172,21 +172,21 @@ int compute(const pcl::PCLPointCloud2& source_blob,
     params.num_threads =
         static_cast<int>(opt.threads ? opt.threads : default_demo_threads);
   using Center = pcl_phaser::ProjectionCenter;
-  params.projection_center = opt.centre == "centroid" ? Center::Centroid
-                             : opt.centre == "auto"   ? Center::Automatic
+  params.projection_center = opt.center == "centroid" ? Center::Centroid
+                             : opt.center == "auto"   ? Center::Automatic
                                                       : Center::SensorOrigin;
   phaser.setParameters(params);
   phaser.setInputSource(source);
   phaser.setInputTarget(target);
   print_highlight("Registering ");
   print_info("%zu source to %zu target points as %s (bandwidth %d, grid %d, passes %d, "
-             "threads %u, centre %s) ",
+             "threads %u, center %s) ",
              source->size(), target->size(),
              pcl::traits::has_intensity_v<PointT> ? "PointXYZI" : "PointXYZ",
              params.bandwidth, params.spatial_grid_size, params.passes,
              static_cast<unsigned>(
                  pcl_phaser::resolveThreadCount(int(phaser.getNumberOfThreads()))),
-             opt.centre.c_str());
+             opt.center.c_str());
   TicToc tt;
   tt.tic();
   Cloud aligned;
@@ -206,7 +206,7 @@ int compute(const pcl::PCLPointCloud2& source_blob,
     icp.max_distance = opt.icp_distance;
     icp.iterations = icp_iterations;
     icp.transformation_epsilon = icp_transformation_epsilon;
-    icp.normal_neighbours = icp_normal_neighbours;
+    icp.normal_neighbors = icp_normal_neighbors;
     icp.point_to_point = opt.icp_point;
     icp.voxel_size = icp_voxel_fraction * opt.icp_distance;
     icp.threads = phaser.getNumberOfThreads();

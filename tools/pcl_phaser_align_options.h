@@ -43,10 +43,10 @@ enum ExitCode {
 
 const int default_demo_threads = 2;
 const int default_seed = 1;
-const double default_icp_distance = 1.0; // metres
+const double default_icp_distance = 1.0; // meters
 const int icp_iterations = 50;
 const double icp_transformation_epsilon = 1e-8;
-const int icp_normal_neighbours = 15;
+const int icp_normal_neighbors = 15;
 // ICP runs on both clouds reduced to one point per voxel of this edge, a quarter of the
 // correspondence distance (0.25 m by default): refinement then costs less than the
 // global stage, and the errors are still measured against the truth of the full clouds.
@@ -60,7 +60,7 @@ const double demo_icp_rre_deg = 0.1, demo_icp_rte_m = 0.02;
 
 struct Options {
   std::string source, target, output, overlay, screenshot, gt;
-  std::string centre = "sensor"; // sensor, centroid or auto
+  std::string center = "sensor"; // sensor, centroid or auto
   bool demo = false, icp = false, icp_point = false, json = false;
   int bandwidth = 0, grid = 0, passes = 0, threads = 0; // 0: the class default
   double icp_distance = default_icp_distance;
@@ -89,7 +89,7 @@ struct Spec {
   bool has_value;
 };
 const Spec specs[] = {{"-b", "--bandwidth", true},     {"--grid", nullptr, true},
-                      {"--passes", nullptr, true},     {"--centre", "--center", true},
+                      {"--passes", nullptr, true},     {"--center", "--center", true},
                       {"--threads", nullptr, true},    {"-icp", "--icp", false},
                       {"--icp-point", nullptr, false}, {"--icp-dist", nullptr, true},
                       {"-o", nullptr, true},           {"-m", nullptr, true},
@@ -176,11 +176,11 @@ inline int parseOptions(int argc, char** argv, Options& opt)
                    text.c_str(), o.spec.name, o.lo, o.hi));
     o.value = static_cast<int>(v);
   }
-  if (optionValue(argc, argv, *findSpec("--centre"), text)) {
+  if (optionValue(argc, argv, *findSpec("--center"), text)) {
     if (text != "sensor" && text != "centroid" && text != "auto")
-      return (fail(kUsage, "Invalid --centre '%s': expected sensor, centroid or auto.",
+      return (fail(kUsage, "Invalid --center '%s': expected sensor, centroid or auto.",
                    text.c_str()));
-    opt.centre = text;
+    opt.center = text;
   }
   if (optionValue(argc, argv, *findSpec("--icp-dist"), text)) {
     char* end = nullptr;
@@ -188,7 +188,7 @@ inline int parseOptions(int argc, char** argv, Options& opt)
     if (text.empty() || *end != '\0' || !(opt.icp_distance > 0.0) ||
         !std::isfinite(opt.icp_distance))
       return (fail(kUsage,
-                   "Invalid --icp-dist '%s': expected a distance > 0 in metres.",
+                   "Invalid --icp-dist '%s': expected a distance > 0 in meters.",
                    text.c_str()));
   }
   if (optionValue(argc, argv, *findSpec("--size"), text)) {

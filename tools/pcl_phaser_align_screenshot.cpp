@@ -99,7 +99,7 @@ bool saveOverlayScreenshot(const pcl::PointCloud<pcl::PointXYZRGB>::ConstPtr& cl
   viz.addPointCloud<pcl::PointXYZRGB>(cloud, rgb, "overlay");
   viz.setPointCloudRenderingProperties(pcl::visualization::PCL_VISUALIZER_POINT_SIZE, 2,
                                        "overlay");
-  // Top-down: look down -z at the centre of the bounding box, y up; resetCamera()
+  // Top-down: look down -z at the center of the bounding box, y up; resetCamera()
   // keeps that direction and moves the camera back until everything is in view.
   pcl::PointXYZRGB lo, hi;
   pcl::getMinMax3D(*cloud, lo, hi);

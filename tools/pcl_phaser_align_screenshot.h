@@ -25,9 +25,9 @@ namespace phaser {
  */
 bool canSaveScreenshot(std::string& reason);
 
-/** \brief Render a coloured cloud top-down (the camera looks down -z and is fitted to
+/** \brief Render a colored cloud top-down (the camera looks down -z and is fitted to
  * the cloud) on a white background and save it as a PNG of exactly width x height.
- * \param[in] cloud the cloud, coloured by its rgb field
+ * \param[in] cloud the cloud, colored by its rgb field
  * \param[in] path the PNG file to write
  * \param[in] width,height image size in pixels
  * \param[out] error the reason, when false is returned

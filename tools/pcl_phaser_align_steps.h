@@ -152,7 +152,7 @@ struct Stage {
 };
 
 /** \brief Set the rotation error (degrees, the geodesic angle of R_truth^T R) and the
- * translation error (metres, |t - t_truth|) of a stage. */
+ * translation error (meters, |t - t_truth|) of a stage. */
 inline void computeErrors(Stage& s, const Eigen::Matrix4d& truth)
 {
   const Eigen::Matrix3d dR =
@@ -166,13 +166,13 @@ inline void computeErrors(Stage& s, const Eigen::Matrix4d& truth)
 
 /** \brief How refine() runs ICP. */
 struct IcpSettings {
-  double max_distance = 1.0;            ///< max correspondence distance, metres
+  double max_distance = 1.0;            ///< max correspondence distance, meters
   int iterations = 50;                  ///< maximum number of iterations
   double transformation_epsilon = 1e-8; ///< convergence on the transform change
-  int normal_neighbours = 15;           ///< k of the normal estimation (point-to-plane)
+  int normal_neighbors = 15;            ///< k of the normal estimation (point-to-plane)
   bool point_to_point = false;          ///< plain pcl::IterativeClosestPoint
   unsigned threads = 1;                 ///< threads of the normal estimation
-  /** \brief Edge (metres) of the pcl::VoxelGrid that both clouds are reduced to
+  /** \brief Edge (meters) of the pcl::VoxelGrid that both clouds are reduced to
    *  before ICP (one centroid per occupied voxel), so refinement costs less than the
    *  global stage; 0: the full clouds. */
   double voxel_size = 0.0;
@@ -236,7 +236,7 @@ void refine(const typename pcl::PointCloud<PointT>::Ptr& full_source,
       clouds[k] = pcl::make_shared<pcl::PointCloud<NormalT>>();
       pcl::copyPointCloud(k ? *target : *source, *clouds[k]);
       pcl::NormalEstimationOMP<NormalT, NormalT> ne(settings.threads);
-      ne.setKSearch(settings.normal_neighbours);
+      ne.setKSearch(settings.normal_neighbors);
       ne.setInputCloud(clouds[k]);
       ne.compute(*clouds[k]);
       pcl::Indices kept;

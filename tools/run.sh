@@ -37,7 +37,7 @@ cmake --build "$build" -j"$(nproc)" "${target[@]}"
 
 case "$job" in
   demo)
-    # The embedded default: a simulated 64-beam LiDAR pair a few metres and >100 degrees
+    # The embedded default: a simulated 64-beam LiDAR pair a few meters and >100 degrees
     # apart, registered globally and refined with ICP; prints the errors and writes an
     # overlay for pcl_viewer into the current directory.
     "$build/tools/pcl_phaser_align" --demo ;;

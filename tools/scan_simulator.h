@@ -19,7 +19,7 @@
 namespace pcl {
 namespace phaser {
 
-/** \brief Height of the simulated sensor above the ground, metres (a car roof mount).
+/** \brief Height of the simulated sensor above the ground, meters (a car roof mount).
  */
 constexpr double kDefaultSensorHeight = 1.8;
 
@@ -38,11 +38,11 @@ struct LidarParameters {
   double max_elevation_deg = 2.0;
   /** \brief Horizontal angle between two firings, degrees, in (0, 360]. */
   double azimuth_step_deg = 0.2;
-  /** \brief Returns with a measured range below this are dropped, metres. */
+  /** \brief Returns with a measured range below this are dropped, meters. */
   double min_range = 1.0;
-  /** \brief Returns with a measured range above this are dropped, metres. */
+  /** \brief Returns with a measured range above this are dropped, meters. */
   double max_range = 100.0;
-  /** \brief Standard deviation of the Gaussian range noise, metres (>= 0). */
+  /** \brief Standard deviation of the Gaussian range noise, meters (>= 0). */
   double range_noise = 0.02;
   /** \brief Standard deviation of the Gaussian intensity noise (>= 0). */
   double intensity_noise = 0.01;
@@ -55,7 +55,7 @@ struct LidarParameters {
 
 /** \brief The nearest surface met by a ray. */
 struct RayHit {
-  /** \brief Distance from the ray origin to the hit, metres. */
+  /** \brief Distance from the ray origin to the hit, meters. */
   double range = 0.0;
   /** \brief Hit position, world frame. */
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
@@ -125,9 +125,9 @@ public:
        const LidarParameters& lidar = LidarParameters()) const;
 
   /** \brief Whether a position is free to put a sensor at: above the ground (when
-   * there is one) and at least clearance metres from every solid.
+   * there is one) and at least clearance meters from every solid.
    * \param[in] position world position
-   * \param[in] clearance required distance to the solids, metres
+   * \param[in] clearance required distance to the solids, meters
    */
   bool isFree(const Eigen::Vector3d& position, double clearance = 1.0) const;
 
@@ -152,10 +152,10 @@ private:
 
 /** \brief A sensor pose in the world: position (x, y, height) and orientation
  * Rz(yaw) * Ry(pitch) * Rx(roll).
- * \param[in] x,y position on the ground plane, metres
+ * \param[in] x,y position on the ground plane, meters
  * \param[in] yaw heading about z, radians
  * \param[in] roll,pitch tilt about the sensor's x and y axes, radians
- * \param[in] height height of the sensor above the ground, metres
+ * \param[in] height height of the sensor above the ground, meters
  */
 Eigen::Isometry3d makeSensorPose(double x, double y, double yaw, double roll = 0.0,
                                  double pitch = 0.0,
@@ -187,7 +187,7 @@ ScanPair makeScanPair(const SimulatedScene& scene, const Eigen::Isometry3d& targ
                       const LidarParameters& lidar = LidarParameters());
 
 /** \brief The default registration demo: the outdoor scene of the given seed scanned
- * from a free position near its centre (target) and from a second free position 2-4 m
+ * from a free position near its center (target) and from a second free position 2-4 m
  * away turned by 100-160 degrees of yaw (either way) plus up to 3 degrees of roll and
  * pitch (source).
  * \param[in] seed seed of the scene and of the two poses

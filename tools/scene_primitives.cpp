@@ -175,7 +175,7 @@ public:
       , clear_radius_(clear_radius)
   {
   }
-  /** \brief Can a disc of the radius sit at (x, y), gap metres from everything? */
+  /** \brief Can a disc of the radius sit at (x, y), gap meters from everything? */
   bool fits(double x, double y, double radius, double gap) const
   {
     if (std::abs(x) > half_ - radius || std::abs(y) > half_ - radius ||
@@ -248,7 +248,7 @@ void addBuildings(const SceneParameters& params, Draw& draw, Layout& layout,
 }
 
 /** \brief Place a disc of the radius: near a road edge with probability road_chance
- * (offset metres from the road's centre line), anywhere otherwise. */
+ * (offset meters from the road's center line), anywhere otherwise. */
 bool placeDisc(Draw& draw, const Layout& layout, double radius, double gap,
                double road_chance, double offset, double& x, double& y, double& yaw)
 {
@@ -374,7 +374,7 @@ double groundReflectivity(double x, double y)
 {
   const double ay = std::abs(y - kRoadAY), bx = std::abs(x - kRoadBX);
   if (ay < kRoadAHalfWidth || bx < kRoadBHalfWidth) {
-    // Dashed centre line on road A, solid edge lines on both, asphalt elsewhere.
+    // Dashed center line on road A, solid edge lines on both, asphalt elsewhere.
     if (ay < 0.075 && bx > kRoadBHalfWidth && std::fmod(x + 3000.0, 6.0) < 3.0)
       return 0.8;
     if ((ay > kRoadAHalfWidth - 0.3 && ay < kRoadAHalfWidth - 0.15 &&

@@ -28,7 +28,7 @@ enum class PrimitiveShape {
 struct ScenePrimitive {
   /** \brief Which solid this is. */
   PrimitiveShape shape = PrimitiveShape::BOX;
-  /** \brief Centre of the solid (for a cylinder: the middle of its axis). */
+  /** \brief Center of the solid (for a cylinder: the middle of its axis). */
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
   /** \brief Box: half sizes along its local x, y, z; cylinder: (radius, radius, half
    * height); ellipsoid: semi-axes along its local x, y, z. */
@@ -43,7 +43,7 @@ struct ScenePrimitive {
 };
 
 /** \brief A box standing upright, rotated by yaw about z.
- * \param[in] center centre of the box
+ * \param[in] center center of the box
  * \param[in] half_extent half sizes along the box's local x, y, z (all > 0)
  * \param[in] yaw rotation about z, radians
  * \param[in] reflectivity surface reflectivity in [0, 1]
@@ -62,7 +62,7 @@ ScenePrimitive makeCylinder(double x, double y, double z_min, double z_max,
                             double radius, double reflectivity);
 
 /** \brief An ellipsoid (tree crown, bush), rotated by yaw about z.
- * \param[in] center centre
+ * \param[in] center center
  * \param[in] semi_axes semi-axes along its local x, y, z (all > 0)
  * \param[in] yaw rotation about z, radians
  * \param[in] reflectivity surface reflectivity in [0, 1]
@@ -106,7 +106,7 @@ Eigen::Vector4d footprintBounds(const ScenePrimitive& primitive);
 double topHeight(const ScenePrimitive& primitive);
 
 /** \brief Reflectivity of the ground (z = 0) at (x, y): gravel and grass around two
- * asphalt roads with dashed centre lines, so the ground carries intensity texture.
+ * asphalt roads with dashed center lines, so the ground carries intensity texture.
  * \param[in] x,y world position on the ground
  */
 double groundReflectivity(double x, double y);
@@ -115,7 +115,7 @@ double groundReflectivity(double x, double y);
 struct SceneParameters {
   /** \brief Seed of the generator; the same parameters give the same scene. */
   unsigned seed = 1;
-  /** \brief Side of the square the objects are placed in, metres, centred at the
+  /** \brief Side of the square the objects are placed in, meters, centered at the
    * origin. */
   double extent = 120.0;
   /** \brief No object comes closer than this to the z axis, so sensors fit there. */
@@ -137,7 +137,7 @@ struct SceneParameters {
 /** \brief Generate the solids of an outdoor scene (the ground plane is implicit).
  *
  * Buildings are spread over angular sectors around the origin so a sensor near the
- * centre sees structure in every direction; positions, sizes, yaws and
+ * center sees structure in every direction; positions, sizes, yaws and
  * reflectivities are drawn from a std::mt19937 seeded with params.seed, using only
  * its raw output so the scene is identical on every standard library.
  * \param[in] params scene parameters

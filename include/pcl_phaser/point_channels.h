@@ -33,7 +33,7 @@ enum Channel : std::uint32_t {
   CHANNEL_COLOR = 1u << 4         ///< luminance of `rgb`/`rgba`
 };
 
-/** \brief Which channels a point type carries. Specialise it for a type whose fields
+/** \brief Which channels a point type carries. Specialize it for a type whose fields
  *  PCL's traits cannot see, or to hide a field from the registration:
  *  \code
  *  template <> struct pcl::phaser::PointChannels<MyPoint> {
@@ -42,7 +42,7 @@ enum Channel : std::uint32_t {
  *  };
  *  \endcode
  *  Range always comes from xyz, never from a `range` field: drivers disagree on its
- * unit (PCL's PointWithRange stores metres as float, Ouster stores millimetres as
+ * unit (PCL's PointWithRange stores meters as float, Ouster stores millimeters as
  * uint32). */
 template <typename PointT>
 struct PointChannels {

@@ -8,7 +8,7 @@
  */
 #include "pipeline_internal.h"
 
-#include <pcl_phaser/core/projection_centre.h>
+#include <pcl_phaser/core/projection_center.h>
 
 #include <mutex>
 #include <new>
@@ -19,7 +19,7 @@ namespace pcl_phaser {
  *  sensor frame, and the model of the last projection center and parameters. */
 struct Target::Cache {
   std::mutex mutex;
-  int sensor_centred = -1; ///< looksSensorCentred about the origin; < 0: not computed
+  int sensor_centered = -1; ///< looksSensorCentered about the origin; < 0: not computed
   std::shared_ptr<const TargetModel> model;
   ProjectionCenter center = ProjectionCenter::SensorOrigin; ///< of model
   Eigen::Vector3d offset = Eigen::Vector3d::Zero(); ///< the projection center of model
@@ -96,7 +96,7 @@ bool sameModel(const StageParameters& m, const StageParameters& p)
          m.normalized_refinement == p.normalized_refinement &&
          m.orientation_candidates == p.orientation_candidates &&
          m.orientation_bandwidth == p.orientation_bandwidth &&
-         m.sensor_centred == p.sensor_centred;
+         m.sensor_centered == p.sensor_centered;
 }
 
 /** The center both clouds are projected about; \a moved is the source moved by the
@@ -110,12 +110,12 @@ ProjectionCenter chooseCenter(const Target& target, const Eigen::Matrix3Xd& move
   bool target_lidar = false;
   {
     std::lock_guard<std::mutex> lock(cache.mutex);
-    if (cache.sensor_centred < 0)
-      cache.sensor_centred =
-          looksSensorCentred(target.points(), Eigen::Vector3d::Zero()) ? 1 : 0;
-    target_lidar = cache.sensor_centred == 1;
+    if (cache.sensor_centered < 0)
+      cache.sensor_centered =
+          looksSensorCentered(target.points(), Eigen::Vector3d::Zero()) ? 1 : 0;
+    target_lidar = cache.sensor_centered == 1;
   }
-  return target_lidar && looksSensorCentred(moved, guess.topRightCorner<3, 1>())
+  return target_lidar && looksSensorCentered(moved, guess.topRightCorner<3, 1>())
              ? ProjectionCenter::SensorOrigin
              : ProjectionCenter::Centroid;
 }
@@ -179,11 +179,11 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
       chooseCenter(target, moved, guess, params.projection_center);
   StageParameters p;
   static_cast<PhaserParameters&>(p) = params;
-  p.sensor_centred = center == ProjectionCenter::SensorOrigin;
+  p.sensor_centered = center == ProjectionCenter::SensorOrigin;
   p.num_threads = resolveThreadCount(params.num_threads);
   // The tilt pull the normalized refinement corrects comes from a scanner's
   // field-of-view band, seen about its origin; about a centroid there is none.
-  p.normalized_refinement = params.normalized_refinement && p.sensor_centred;
+  p.normalized_refinement = params.normalized_refinement && p.sensor_centered;
   Eigen::Vector3d target_center;
   double target_ms = 0.0;
   const std::shared_ptr<const TargetModel> model =

@@ -2,7 +2,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * Bingham distribution: exact normalisation constant, maximum-likelihood fit
+ * Bingham distribution: exact normalization constant, maximum-likelihood fit
  * (Bingham 1974), rotation-vector covariance and rejection sampler (Kent, Ganeiber &
  * Mardia 2013). Derivations are in the comments; see also bingham.h.
  */

@@ -16,7 +16,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/** Points per cloud that enter one voxelisation (see cloudSpatialSpectrum). */
+/** Points per cloud that enter one voxelization (see cloudSpatialSpectrum). */
 constexpr Eigen::Index kMaxSpatialPoints = 40000;
 
 double msSince(Clock::time_point start)

@@ -29,7 +29,7 @@ struct FftwFree {
 template <typename T>
 using FftwBuffer = std::unique_ptr<T[], FftwFree>;
 
-/** \brief SIMD-aligned uninitialised buffer of \a n elements. \throws std::bad_alloc */
+/** \brief SIMD-aligned uninitialized buffer of \a n elements. \throws std::bad_alloc */
 template <typename T>
 FftwBuffer<T> fftwAllocate(std::size_t n)
 {

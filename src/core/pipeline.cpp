@@ -44,14 +44,14 @@ SphericalSpectrum sphericalSpectrum(const Eigen::Matrix3Xd& points,
     throw InvalidArgument(
         std::string(which) +
         " cloud has fewer than two distinct directions from its "
-        "projection centre (empty, all at the centre, or a single point)");
+        "projection center (empty, all at the center, or a single point)");
   if (!(spectrumSquaredNorm(F) > 0.0))
     throw InvalidArgument(std::string(which) + " cloud is constant on the sphere");
   return F;
 }
 
 /** The target points inside the cube that holds the inner 75% of them (by distance from
- *  the centre): after the first pass the residual shift is small, so a fine grid over
+ *  the center): after the first pass the residual shift is small, so a fine grid over
  *  the densely observed region measures it best. */
 std::vector<Eigen::Index> innerRegion(const Eigen::Matrix3Xd& points)
 {
@@ -102,7 +102,7 @@ So3CorrelationGrid correlateRotation(const TargetModel& target,
 }
 
 /** Newton refinement of \a R on C, timed; with PhaserParameters::normalized_refinement
- *  then on the energy-normalised correlation (see refineRotation: plain C leans towards
+ *  then on the energy-normalized correlation (see refineRotation: plain C leans towards
  *  equal sensor tilt) near that maximum, with the supports given. Returns the exact C
  *  at the result through \a value. */
 Eigen::Matrix3d refine(const TargetModel& target, const SphericalSpectrum& H,
@@ -135,7 +135,7 @@ double normalizedPeak(double peak, double energy_product)
 void rotationSamples(const So3CorrelationGrid& C, const So3GridIndex& peak,
                      const Eigen::Matrix3d& estimate, PhaserResult& e)
 {
-  const std::vector<RotationSample> block = rotationNeighbourhood(C, peak, 1);
+  const std::vector<RotationSample> block = rotationNeighborhood(C, peak, 1);
   const Eigen::Matrix3d R_peak =
       rotationFromEuler(gridEuler(peak, C.outputBandwidth()));
   double lowest = block.front().value;
@@ -271,17 +271,17 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
   model->coarse_energy = spectrumEnergy(model->coarse);
   const SurfacePatches patches =
       surfacePatches(points, kPatchVoxels * coarse.voxel_size, Eigen::Vector3d::Zero());
-  if (params.orientation_candidates > 0 && params.sensor_centred)
+  if (params.orientation_candidates > 0 && params.sensor_centered)
     model->orientation =
         orientationSpectrum(patches, params.orientation_bandwidth, params.num_threads);
   model->thickness = patches.thickness;
   model->index = PointIndex(points, kVerificationVoxels * coarse.voxel_size,
                             patchNormalsAt(patches, points));
-  if (params.sensor_centred) {
+  if (params.sensor_centered) {
     model->samples = voxelCentroids(points, model->index.radius());
     model->sample_weights = orientationWeights(patches, model->samples);
   }
-  if (params.sensor_centred)
+  if (params.sensor_centered)
     model->free_space =
         freeSpace(points, kFreeSpaceBandwidth, kFreeSpaceMargin * coarse.voxel_size,
                   params.num_threads);
@@ -315,7 +315,7 @@ SourceContext sourceContext(const TargetModel& target, const Eigen::Matrix3Xd& p
                              Eigen::Vector3d::Zero());
   s.samples.weights = orientationWeights(s.patches, s.samples.points);
   s.samples.normals = patchNormalsAt(s.patches, s.samples.points);
-  if (p.sensor_centred)
+  if (p.sensor_centered)
     s.free_space =
         freeSpace(points, kFreeSpaceBandwidth,
                   kFreeSpaceMargin * target.coarse.grid.voxel_size, p.num_threads);

@@ -8,7 +8,7 @@
 // and the stages pipeline.cpp and pipeline_stages.cpp share.
 #include <pcl_phaser/core/cloud_signals.h>
 #include <pcl_phaser/core/error.h>
-#include <pcl_phaser/core/peak_neighbourhood.h>
+#include <pcl_phaser/core/peak_neighborhood.h>
 #include <pcl_phaser/core/pipeline.h>
 #include <pcl_phaser/core/pose_refinement.h>
 #include <pcl_phaser/core/so3_correlation.h>
@@ -52,7 +52,7 @@ using PhaserEstimate = PhaserResult;
  *  hypotheses are ranked by verifyPose, including the samples in space the target saw
  *  through, and the orientation histograms add hypotheses). */
 struct StageParameters : PhaserParameters {
-  bool sensor_centred = true;
+  bool sensor_centered = true;
 };
 
 class TargetModel {
@@ -60,7 +60,7 @@ public:
   StageParameters params;
   std::size_t channels = 0; ///< number of fused channels beyond the geometry
   SphericalSpectrum spherical;
-  SphericalSupport spherical_support; ///< for the normalised refinement
+  SphericalSupport spherical_support; ///< for the normalized refinement
   double spherical_norm = 0.0;
   SphericalSpectrum orientation; ///< surface-orientation histogram (may be empty)
   /** Binary occupancy on the whole target, padded (any shift up to half the extent),
@@ -69,9 +69,9 @@ public:
   double coarse_energy = 0.0, fine_energy = 0.0; ///< spectrumEnergy of coarse and fine
   PointIndex index;                              ///< target points, for verifyPose
   double thickness = 0.0; ///< SurfacePatches::thickness of the target
-  FreeSpace free_space; ///< what the target's sensor saw through (sensor-centred only)
+  FreeSpace free_space; ///< what the target's sensor saw through (sensor-centered only)
   /** Evenly spaced target points with their orientation weights: the reverse
-   *  free-space test, against what the source's sensor saw (sensor-centred only). */
+   *  free-space test, against what the source's sensor saw (sensor-centered only). */
   Eigen::Matrix3Xd samples;
   Eigen::VectorXd sample_weights;
   double preparation_ms = 0.0;
@@ -156,7 +156,7 @@ So3CorrelationGrid correlateRotation(const TargetModel& target,
                                      const PhaserParameters& p, PhaserResult& e);
 
 /** Newton refinement of \a R on C, timed; with PhaserParameters::normalized_refinement
- *  then on the energy-normalised correlation (see refineRotation: plain C leans towards
+ *  then on the energy-normalized correlation (see refineRotation: plain C leans towards
  *  equal sensor tilt) near that maximum, with the supports given. Returns the exact C
  *  at the result through \a value. */
 Eigen::Matrix3d refine(const TargetModel& target, const SphericalSpectrum& H,

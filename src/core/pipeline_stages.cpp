@@ -25,9 +25,9 @@ PoseVerification verify(const SourceContext& s, const Eigen::Matrix3d& R,
   if (threads <= 0)
     threads = s.p.num_threads;
   PoseVerification v = verifyPose(s.target.index, s.samples, R, t, threads,
-                                  s.p.sensor_centred ? &s.target.free_space : nullptr);
+                                  s.p.sensor_centered ? &s.target.free_space : nullptr);
   // The other way: target samples in space the source's sensor saw through.
-  if (s.p.sensor_centred)
+  if (s.p.sensor_centered)
     v.reverse_free_space_violation =
         freeSpaceViolation(s.free_space, s.target.samples, s.target.sample_weights,
                            R.transpose(), -(R.transpose() * t), threads);
@@ -55,7 +55,7 @@ std::vector<RotationHypothesis> rotationHypotheses(const SourceContext& s,
     h.rotation_score = C(peak) / (s.target.spherical_norm * h_norm);
     out.push_back(h);
   }
-  if (!p.sensor_centred || p.orientation_candidates == 0 ||
+  if (!p.sensor_centered || p.orientation_candidates == 0 ||
       s.target.orientation.size() == 0)
     return out;
   const auto t = Clock::now();
@@ -79,7 +79,7 @@ std::vector<RotationHypothesis> rotationHypotheses(const SourceContext& s,
 
 /** How a verified pose ranks: its closeness-weighted inlier share less a multiple of
  *  its free-space violations. A sample in space the target saw through is strong
- *  evidence against the pose; a sample without a target neighbour is weak (occlusion,
+ *  evidence against the pose; a sample without a target neighbor is weak (occlusion,
  *  partial overlap), hence the factor. */
 double rank(const PoseVerification& v)
 {
@@ -101,7 +101,7 @@ bool accept(const Pose& next, const Pose& current)
 bool canVerify(const SourceContext& s)
 {
   const double limit = kMaxThickness * s.target.index.radius();
-  return s.p.sensor_centred && s.patches.thickness <= limit &&
+  return s.p.sensor_centered && s.patches.thickness <= limit &&
          s.target.thickness <= limit;
 }
 
@@ -228,7 +228,7 @@ Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_
   return pose;
 }
 
-/** Later passes: the source, moved by the estimate, is seen from the target's centre,
+/** Later passes: the source, moved by the estimate, is seen from the target's center,
  *  so its range function no longer suffers the parallax of the source's viewpoint; the
  *  residual rotation (grid argmax among the rotations that tilt less than
  *  kResidualTilt) and a fine-grid shift are composed with the
@@ -330,7 +330,7 @@ void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
   e.constraint = pose.v.constraint;
   e.verification_samples = static_cast<int>(s.samples.points.cols());
   e.verified = e.verification_samples >= kMinVerificationSamples &&
-               (!p.sensor_centred ||
+               (!p.sensor_centered ||
                 (pose.verifiable && e.inlier_fraction >= p.min_inlier_fraction &&
                  e.constraint >= p.min_constraint &&
                  e.free_space_violation <= p.max_free_space_violation));

@@ -45,7 +45,7 @@ void checkSpectrum(const SphericalSpectrum& F, int B, const char* what)
 }
 
 /** Per-thread scratch of the Wigner stage: three d rows and two accumulators, split
- * into real and imaginary parts so the inner loops vectorise. */
+ * into real and imaginary parts so the inner loops vectorize. */
 struct WignerScratch {
   explicit WignerScratch(int J, int B)
       : d0(J)

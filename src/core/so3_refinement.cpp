@@ -66,7 +66,7 @@ refineRotation(const SphericalSpectrum& target, const SphericalSpectrum& source,
     pairs.push_back({&target_support->energy, &source_support->mask});
     pairs.push_back({&target_support->mask, &source_support->energy});
   }
-  // C and, with supports, the normalised objective at each rotation; a rotation whose
+  // C and, with supports, the normalized objective at each rotation; a rotation whose
   // observed regions do not overlap scores -inf.
   std::vector<double> c_raw;
   const auto evaluate = [&](const std::vector<Eigen::Matrix3d>& rotations) {

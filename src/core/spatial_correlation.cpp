@@ -73,7 +73,7 @@ SpatialVolume voxelizeImpl(const SpatialGrid& grid, const Eigen::Matrix3Xd& poin
   const Eigen::Array3d upper = grid.dims.cast<double>().array();
 
   // Footprints. A point contributes iff its continuous voxel coordinate u (voxel
-  // centres at integers) lies in [-1, n) on every axis; the range test is done in
+  // centers at integers) lies in [-1, n) on every axis; the range test is done in
   // double so far or negative points are dropped before any integer conversion (the
   // original cast -1 to unsigned and wrote such points into valid voxels).
   // Footprints are a pure function of each point: computed in parallel, then compacted
@@ -273,7 +273,7 @@ SpatialSpectrum computeSpectrum(const SpatialVolume& volume, int num_threads)
 namespace {
 
 /** C = F conj(G) / N written into \a out (which may alias \a source), divided by
- *  |F conj(G)|^whitening, then the c2r (unnormalised; 1/N makes the output the plain
+ *  |F conj(G)|^whitening, then the c2r (unnormalized; 1/N makes the output the plain
  *  sum when whitening is 0). */
 SpatialVolume correlateInto(const SpatialSpectrum& target,
                             const SpatialSpectrum& source, SpatialComplexArray& out,
@@ -302,7 +302,7 @@ SpatialVolume correlateInto(const SpatialSpectrum& target,
                            f.imag() * g.real() - f.real() * g.imag()};
     if (whitening > 0.0) {
       const double a = std::abs(c);
-      const double d = whitening == 0.5 ? std::sqrt(a)
+      const double d = whitening == 0.5   ? std::sqrt(a)
                        : whitening == 1.0 ? a
                                           : std::pow(a, whitening);
       c = a > 0.0 ? c / d : std::complex<double>{};

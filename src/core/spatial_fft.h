@@ -14,7 +14,7 @@ namespace pcl_phaser {
 namespace detail {
 
 /** \brief Forward r2c 3-D DFT of the nx x ny x nz row-major array \a in into the
- *  nx x ny x (nz/2+1) array \a out (FFTW's layout and sign, unnormalised).
+ *  nx x ny x (nz/2+1) array \a out (FFTW's layout and sign, unnormalized).
  *
  * Computed as one 2-D r2c per x slab, then 1-D complex transforms along x, one batch
  * per y row. The pieces are fixed by the dims alone and each is one FFTW plan
@@ -25,7 +25,7 @@ namespace detail {
 void forwardFft3d(const Eigen::Vector3i& dims, const double* in,
                   std::complex<double>* out, int num_threads);
 
-/** \brief Inverse c2r 3-D DFT (unnormalised), the exact reverse split of forwardFft3d.
+/** \brief Inverse c2r 3-D DFT (unnormalized), the exact reverse split of forwardFft3d.
  *  \a in (nx x ny x (nz/2+1)) is destroyed; \a out receives nx x ny x nz reals. */
 void inverseFft3d(const Eigen::Vector3i& dims, std::complex<double>* in, double* out,
                   int num_threads);

@@ -24,7 +24,7 @@ namespace {
 
 /** Half width of the lags around the peak that the sidelobe statistics skip. */
 constexpr int kPeakExclusionRadius = 2;
-/** Neighbours below this fraction of the peak are FFT round-off rather than peak shape;
+/** Neighbors below this fraction of the peak are FFT round-off rather than peak shape;
  *  their logs would give a meaningless Gaussian fit, so the raw parabola is used. */
 constexpr double kLogFloor = 1e-6;
 
@@ -50,7 +50,7 @@ Eigen::Vector3d refineAxes(const SpatialVolume& c, const Eigen::Vector3i& peak,
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();
   for (int axis = 0; axis < 3; ++axis) {
     if (c.grid.dims[axis] < 3)
-      continue; // both neighbours are the same voxel (or the peak itself)
+      continue; // both neighbors are the same voxel (or the peak itself)
     Eigen::Vector3i lo = peak, hi = peak;
     --lo[axis];
     ++hi[axis];
@@ -67,7 +67,7 @@ Eigen::Vector3d refineAxes(const SpatialVolume& c, const Eigen::Vector3i& peak,
 }
 
 /** Peak-to-sidelobe ratio of the discrete Laplacian L = c - mean of the 6 face
- *  neighbours. The high-pass removes the broad overlap pyramid that correlations of
+ *  neighbors. The high-pass removes the broad overlap pyramid that correlations of
  *  non-negative occupancy grids sit on and that would dominate a plain PSR of c (at 64
  *  voxels a true match scored 7.3 against 6.0 for unrelated clouds; with L, 44 against
  *  11). Statistics skip the 5x5x5 lags around the peak; per-slab partial sums are added
@@ -77,7 +77,7 @@ double peakScore(const SpatialVolume& c, const Eigen::Vector3i& peak, int thread
   const SpatialGrid& grid = c.grid;
   const Eigen::Vector3i& n = grid.dims;
   const int nx = n.x(), ny = n.y(), nz = n.z();
-  // The Laplacian volume, computed once (neighbours wrap around).
+  // The Laplacian volume, computed once (neighbors wrap around).
   SpatialRealArray lap(grid.size());
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (int x = 0; x < nx; ++x) {

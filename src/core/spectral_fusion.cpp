@@ -150,7 +150,7 @@ std::vector<int> sphericalChoice(const std::vector<SphericalSpectrum>& all,
     if (bandOfDegree(l, B, parameters.levels) == 0)
       continue;
     std::fill(window.begin(), window.end(), 0.0);
-    // The window may reach into neighbouring bands: it only measures activity, the
+    // The window may reach into neighboring bands: it only measures activity, the
     // choice itself is still made (and applied) degree by degree.
     for (int d = std::max(0, l - r); d <= std::min(B - 1, l + r); ++d)
       for (std::size_t c = 0; c < K; ++c)
@@ -177,7 +177,7 @@ void checkSpatial(const std::vector<SpatialSpectrum>& channels,
                                static_cast<std::size_t>(grid.dims.y()) *
                                static_cast<std::size_t>(channels.front().halfZ());
   for (const SpatialSpectrum& S : channels) {
-    // All channels of one cloud are voxelised into one grid; anything else means the
+    // All channels of one cloud are voxelized into one grid; anything else means the
     // coefficients do not describe the same frequencies (or phases).
     if (S.grid.dims != grid.dims || S.grid.voxel_size != grid.voxel_size ||
         S.grid.origin != grid.origin)
@@ -218,7 +218,7 @@ void spatialFusion(const std::vector<SpatialSpectrum>& all,
           const std::size_t flat =
               (static_cast<std::size_t>(ix) * ny + iy) * static_cast<std::size_t>(hz) +
               kz;
-          // f_max = Nyquist 1 / (2 voxel): ratio = |f| / f_max in cycles per metre, so
+          // f_max = Nyquist 1 / (2 voxel): ratio = |f| / f_max in cycles per meter, so
           // the shells are spheres in physical frequency whatever the axis lengths.
           const double ratio = 2.0 * voxel * first.frequency(flat).norm();
           const int band = bandOfRatio(ratio, levels);

@@ -51,13 +51,13 @@ int cellIndex(const Eigen::Vector3d& p, int bandwidth)
     return -1;
   const int n = 2 * bandwidth;
   // Cell j spans colatitudes [pi j / 2B, pi (j+1) / 2B): its sample theta_j is the
-  // centre.
+  // center.
   const double theta = std::atan2(rho, p.z());
   double phi = std::atan2(p.y(), p.x());
   if (phi < 0.0)
     phi += 2.0 * M_PI;
   const int j = std::min(n - 1, static_cast<int>(theta * n / M_PI));
-  // Column k is centred on phi_k = pi k / B: round to the nearest sample.
+  // Column k is centered on phi_k = pi k / B: round to the nearest sample.
   const int k = static_cast<int>(std::lround(phi * bandwidth / M_PI)) % n;
   return j * n + k;
 }

@@ -31,15 +31,15 @@ FreeSpace freeSpace(const Eigen::Matrix3Xd& points, int bandwidth, double margin
     if (seen == 0.0 || r < seen)
       seen = r;
   }
-  // The nearest return over each cell's 3 x 3 neighbourhood (azimuth wraps): a cell can
-  // hold a return from only its far edge (ground at a grazing angle spans metres of
+  // The nearest return over each cell's 3 x 3 neighborhood (azimuth wraps): a cell can
+  // hold a return from only its far edge (ground at a grazing angle spans meters of
   // range within one cell), so a sample is tested against everything seen around it.
   const int n = 2 * bandwidth;
   std::vector<double> eroded(f.nearest.size(), 0.0);
   for (int j = 0; j < n; ++j)
     for (int k = 0; k < n; ++k) {
       double m = f.nearest[static_cast<std::size_t>(j) * n + k];
-      if (m == 0.0) // no return here: nothing is known, whatever the neighbours saw
+      if (m == 0.0) // no return here: nothing is known, whatever the neighbors saw
         continue;
       for (int dj = -1; dj <= 1; ++dj) {
         const int jj = j + dj;

@@ -2,7 +2,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * Bingham distribution: normalisation constant against independent quadratures, MLE,
+ * Bingham distribution: normalization constant against independent quadratures, MLE,
  * fit, sampler and rotation-vector covariance.
  */
 #include <pcl_phaser/core/bingham.h>
@@ -237,7 +237,7 @@ TEST(Bingham, MaximumLikelihoodInvertsMoments)
     for (int i = 0; i < 4; ++i)
       EXPECT_NEAR(fitted(i), z(i), 1e-7 * (1.0 + std::abs(z(i)))) << z.transpose();
   }
-  // uniform scatter: Z = 0; unnormalised input is accepted
+  // uniform scatter: Z = 0; unnormalized input is accepted
   EXPECT_LT(binghamMaximumLikelihood(Eigen::Vector4d::Constant(3.0)).norm(), 1e-12);
   // omega_i -> 0 is capped: the MLE is unbounded there
   const Eigen::Vector4d capped =
@@ -400,7 +400,7 @@ TEST(Bingham, DistributionBasics)
   EXPECT_EQ(d.Z, Eigen::Vector4d(-4, -3, -2, 0));
   EXPECT_EQ(d.M.col(0), m.col(1));
   EXPECT_EQ(d.M.col(3), m.col(0));
-  // pdf: antipodally symmetric, scale-invariant, normalised (F = int exp(..) over S^3)
+  // pdf: antipodally symmetric, scale-invariant, normalized (F = int exp(..) over S^3)
   const Eigen::Vector4d q = Eigen::Vector4d(0.1, 0.7, -0.2, 0.4).normalized();
   EXPECT_DOUBLE_EQ(d.pdf(q), d.pdf(-q));
   EXPECT_DOUBLE_EQ(d.pdf(q), d.pdf(3.0 * q));

@@ -8,7 +8,7 @@
  */
 #include <pcl_phaser/core/bingham.h>
 #include <pcl_phaser/core/error.h>
-#include <pcl_phaser/core/peak_neighbourhood.h>
+#include <pcl_phaser/core/peak_neighborhood.h>
 #include <pcl_phaser/core/spatial_correlation.h>
 
 #include <Eigen/Cholesky>
@@ -26,8 +26,8 @@ namespace {
 constexpr int kN = 32;
 
 /** A kN^3 volume holding an axis-aligned Gaussian peak of height \a height and widths
- *  \a width (voxels) at lag \a centre, plus white noise of deviation \a sigma. */
-SpatialVolume gaussianPeak(const Eigen::Vector3d& centre, const Eigen::Vector3d& width,
+ *  \a width (voxels) at lag \a center, plus white noise of deviation \a sigma. */
+SpatialVolume gaussianPeak(const Eigen::Vector3d& center, const Eigen::Vector3d& width,
                            double height, double sigma, std::mt19937& rng)
 {
   SpatialVolume v;
@@ -40,7 +40,7 @@ SpatialVolume gaussianPeak(const Eigen::Vector3d& centre, const Eigen::Vector3d&
       for (int z = 0; z < kN; ++z) {
         const Eigen::Vector3d lag(x > kN / 2 ? x - kN : x, y > kN / 2 ? y - kN : y,
                                   z > kN / 2 ? z - kN : z);
-        const Eigen::Vector3d d = (lag - centre).cwiseQuotient(width);
+        const Eigen::Vector3d d = (lag - center).cwiseQuotient(width);
         v.values[v.grid.flatIndex(x, y, z)] =
             height * std::exp(-0.5 * d.squaredNorm()) + sigma * noise(rng);
       }
@@ -72,9 +72,9 @@ TEST(PeakCovariance, SidelobesOfWhiteNoise)
   }
 }
 
-TEST(PeakCovariance, SubVoxelClosedFormOnACentredGaussian)
+TEST(PeakCovariance, SubVoxelClosedFormOnACenteredGaussian)
 {
-  // A Gaussian of width w centred on a voxel, in the log domain: neighbours a = d =
+  // A Gaussian of width w centered on a voxel, in the log domain: neighbors a = d =
   // A exp(-1 / (2 w^2)), curvature k = -1 / w^2, offset 0, so var = var_u / (a d) /
   // (4 k^2) = var_u w^4 exp(1 / w^2) / (4 A^2) voxel^2, whatever var_k is.
   std::mt19937 rng(1);
@@ -104,7 +104,7 @@ TEST(PeakCovariance, SubVoxelCovarianceMatchesMonteCarlo)
   // the sidelobes measure, against the scatter of that estimate over noisy
   // realisations.
   std::mt19937 rng(7);
-  const Eigen::Vector3d centre(0.3, -0.2, 0.1), width(1.4, 1.8, 1.1);
+  const Eigen::Vector3d center(0.3, -0.2, 0.1), width(1.4, 1.8, 1.1);
   const double sigma = 0.01;
   const int trials = 300;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -112,7 +112,7 @@ TEST(PeakCovariance, SubVoxelCovarianceMatchesMonteCarlo)
                   predicted = Eigen::Matrix3d::Zero();
   std::vector<Eigen::Vector3d> estimates;
   for (int i = 0; i < trials; ++i) {
-    const SpatialVolume v = gaussianPeak(centre, width, 1.0, sigma, rng);
+    const SpatialVolume v = gaussianPeak(center, width, 1.0, sigma, rng);
     const SpatialCorrelationResult r =
         findSpatialPeak(v, SpatialPeakRefinement::kGaussian, 1, false);
     ASSERT_EQ(r.index, Eigen::Vector3i::Zero());
@@ -125,7 +125,7 @@ TEST(PeakCovariance, SubVoxelCovarianceMatchesMonteCarlo)
     scatter += (e - mean) * (e - mean).transpose();
   scatter /= trials - 1;
   predicted /= trials;
-  EXPECT_LT((mean - centre * 0.25).norm(), 0.02 * 0.25); // the estimate is unbiased
+  EXPECT_LT((mean - center * 0.25).norm(), 0.02 * 0.25); // the estimate is unbiased
   for (int a = 0; a < 3; ++a) // 300 samples: the variance is known to about +-8 %
     EXPECT_NEAR(predicted(a, a), scatter(a, a), 0.25 * scatter(a, a)) << "axis " << a;
   // Axes are independent in the model; the empirical cross terms are small.
@@ -203,13 +203,14 @@ TEST(PeakCovariance, InterpolationModelErrorIsTheDisagreementOfTwoVertices)
 {
   std::mt19937 rng(2);
   // A symmetric peak: both vertices are 0, no model error.
-  const SpatialVolume centred = gaussianPeak({0, 0, 0}, {1.0, 1.0, 1.0}, 1.0, 0.0, rng);
-  EXPECT_LT(interpolationModelCovariance(centred, Eigen::Vector3i::Zero()).norm(),
+  const SpatialVolume centered =
+      gaussianPeak({0, 0, 0}, {1.0, 1.0, 1.0}, 1.0, 0.0, rng);
+  EXPECT_LT(interpolationModelCovariance(centered, Eigen::Vector3i::Zero()).norm(),
             1e-20);
-  // A sharp Gaussian off the voxel centre: the log vertex is exact, the parabola is
+  // A sharp Gaussian off the voxel center: the log vertex is exact, the parabola is
   // not.
-  const Eigen::Vector3d centre(0.3, -0.2, 0.1);
-  const SpatialVolume sharp = gaussianPeak(centre, {0.7, 0.7, 0.7}, 1.0, 0.0, rng);
+  const Eigen::Vector3d center(0.3, -0.2, 0.1);
+  const SpatialVolume sharp = gaussianPeak(center, {0.7, 0.7, 0.7}, 1.0, 0.0, rng);
   const Eigen::Matrix3d cov =
       interpolationModelCovariance(sharp, Eigen::Vector3i::Zero());
   EXPECT_TRUE(cov.isDiagonal());
@@ -221,7 +222,7 @@ TEST(PeakCovariance, InterpolationModelErrorIsTheDisagreementOfTwoVertices)
     const double vb = sharp.values[0];
     const double vd = sharp.values[sharp.grid.flatIndex(p.x(), p.y(), p.z())];
     const double parabola = 0.5 * (va - vd) / (va - 2 * vb + vd);
-    const double diff = (centre[a] - parabola) * sharp.grid.voxel_size;
+    const double diff = (center[a] - parabola) * sharp.grid.voxel_size;
     EXPECT_NEAR(cov(a, a), diff * diff, 1e-9 * diff * diff + 1e-15) << "axis " << a;
     EXPECT_GT(cov(a, a), 0.0);
   }

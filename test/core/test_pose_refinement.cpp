@@ -21,7 +21,7 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 
 /** A room corner with a box: floor z = 0, walls x = 4 and y = 3, and a box face
- *  x = 1 (|y| < 1, 0 < z < 1), sampled every \a h metres, with unit normals. */
+ *  x = 1 (|y| < 1, 0 < z < 1), sampled every \a h meters, with unit normals. */
 void corner(double h, Eigen::Matrix3Xd& points, Eigen::Matrix3Xd& normals)
 {
   std::vector<Eigen::Vector3d> p, n;

@@ -3,7 +3,7 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  *
  * evaluateCorrelations (several spectrum pairs sharing one Wigner recurrence) and the
- * energy-normalised Newton refinement (refineRotation with supports). Its effect on
+ * energy-normalized Newton refinement (refineRotation with supports). Its effect on
  * tilted LiDAR pairs is tested with the simulator (test/simulator).
  */
 #include "so3_test_support.h"
@@ -121,7 +121,7 @@ TEST(So3NormalizedRefinement, TrustRegionBoundsTheStep)
 }
 
 /** Lobes over the whole sphere (every cell observed): the energy terms are then
- *  constant and the normalised refinement must find what the plain one finds. */
+ *  constant and the normalized refinement must find what the plain one finds. */
 TEST(So3NormalizedRefinement, FullyObservedSignalsKeepTheExactRotation)
 {
   const int B = 16;
@@ -148,7 +148,7 @@ TEST(So3NormalizedRefinement, FullyObservedSignalsKeepTheExactRotation)
     EXPECT_LT(rotationDistance(plain.rotation, R), 0.01 * kDeg);
     EXPECT_LT(rotationDistance(normalized.rotation, R), 0.01 * kDeg);
     EXPECT_EQ(plain.objective, plain.value);
-    // value is the plain C at the result; the normalised objective is positive there.
+    // value is the plain C at the result; the normalized objective is positive there.
     EXPECT_NEAR(normalized.value, evaluateCorrelation(F, H, {normalized.rotation})[0],
                 1e-12 * std::abs(normalized.value));
     EXPECT_GT(normalized.objective, 0.0);

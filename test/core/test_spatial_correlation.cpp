@@ -2,7 +2,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * Translation stage: grid sizing, voxelisation, r2c spectra, correlation, sub-voxel
+ * Translation stage: grid sizing, voxelization, r2c spectra, correlation, sub-voxel
  * peak (reference-implementation-notes.md section 4 and the bugs listed there).
  */
 #include <pcl_phaser/core/error.h>
@@ -169,15 +169,15 @@ TEST(SpatialVoxelize, TrilinearSplatKeepsMassAndCentroid)
   int nonzero = 0;
   for (std::size_t i = 0; i < v.values.size(); ++i) {
     mass += v.values[i];
-    centroid += v.values[i] * grid.voxelCentre(grid.voxelIndex(i));
+    centroid += v.values[i] * grid.voxelCenter(grid.voxelIndex(i));
     nonzero += v.values[i] != 0.0;
   }
   EXPECT_NEAR(mass, 1.0, 1e-12);
   EXPECT_LT((centroid / mass - p).norm(), 1e-12);
   EXPECT_EQ(nonzero, 8);
 
-  // A point on a voxel centre with the default saturation W0 = 1: value 1 - exp(-1).
-  const Eigen::Vector3d c = grid.voxelCentre(Eigen::Vector3i(3, 4, 5));
+  // A point on a voxel center with the default saturation W0 = 1: value 1 - exp(-1).
+  const Eigen::Vector3d c = grid.voxelCenter(Eigen::Vector3i(3, 4, 5));
   const SpatialVolume s = voxelize(grid, Eigen::Matrix3Xd(c));
   EXPECT_NEAR(s.values[grid.flatIndex(3, 4, 5)], 1.0 - std::exp(-1.0), 1e-12);
 }
@@ -186,7 +186,7 @@ TEST(SpatialVoxelize, ChannelValueIsMeanTimesSoftOccupancy)
 {
   SpatialGrid grid;
   grid.dims = Eigen::Vector3i(8, 8, 8);
-  const Eigen::Vector3d c = grid.voxelCentre(Eigen::Vector3i(2, 5, 6));
+  const Eigen::Vector3d c = grid.voxelCenter(Eigen::Vector3i(2, 5, 6));
   Eigen::Matrix3Xd points(3, 4);
   points << c, c, c, Eigen::Vector3d(NAN, 0.0, 0.0);
   points.col(2).x() += 100.0; // far outside: must not count
@@ -325,7 +325,7 @@ TEST(SpatialSpectrum, LayoutAndFrequencies)
   const std::size_t flat = (static_cast<std::size_t>(5) * 6 + 2) * 6 + 4;
   EXPECT_EQ(s.frequencyIndex(flat), k);
   EXPECT_NEAR(std::abs(s.coefficients[flat]), 0.5 * n, 1e-9);
-  // cycles per metre: k / (n * voxel)
+  // cycles per meter: k / (n * voxel)
   EXPECT_TRUE(
       s.frequency(flat).isApprox(Eigen::Vector3d(-3.0 / 4.0, 2.0 / 3.0, 4.0 / 5.0)));
   EXPECT_EQ(s.multiplicity(flat), 2);
@@ -365,7 +365,7 @@ TEST(SpatialCorrelation, DeltaShiftsInEveryOctantWrapAround)
 
 TEST(SpatialCorrelation, DifferentOriginsEnterTheShift)
 {
-  // Source voxelised on a grid moved by whole voxels: the correlation volume's origin
+  // Source voxelized on a grid moved by whole voxels: the correlation volume's origin
   // (target origin - source origin) carries that offset into the metric shift.
   const Eigen::Matrix3Xd source = sceneBox(3000, 5);
   const Eigen::Vector3d shift(2.2, -1.1, 0.3);
@@ -460,7 +460,7 @@ TEST(SpatialCorrelation, ReVoxelisingTheMovedSourceRemovesTheInterpolationBias)
 TEST(SpatialCorrelation, SourcePointsOutsideTheTargetGridAreIgnored)
 {
   // Extra source points far outside the target's grid (in every direction, including
-  // negative indices) must not change the voxelised source at all.
+  // negative indices) must not change the voxelized source at all.
   const Eigen::Matrix3Xd source = sceneBox(3000, 9);
   const Eigen::Vector3d shift(1.7, 0.9, -0.4);
   const Eigen::Matrix3Xd target = source.colwise() + shift;

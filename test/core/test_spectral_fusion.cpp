@@ -3,7 +3,7 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  *
  * Spectral fusion (paper IV-D) on degree bands and radial frequency shells, and the
- * robust channel normalisation that precedes it.
+ * robust channel normalization that precedes it.
  */
 #include "so3_test_support.h"
 
@@ -89,7 +89,7 @@ SpatialVolume roll(const SpatialVolume& in, const Eigen::Vector3i& s)
   return out;
 }
 
-/** Normalised real inner product of two half-spectra (multiplicity-weighted). */
+/** Normalized real inner product of two half-spectra (multiplicity-weighted). */
 double spectralCorrelation(const SpatialSpectrum& a, const SpatialSpectrum& b)
 {
   double ab = 0.0, aa = 0.0, bb = 0.0;
@@ -125,7 +125,7 @@ TEST(SpectralFusion, BandEdgesAreDyadic)
   for (int l = 0; l < 16; ++l)
     EXPECT_EQ(sphericalBand(l, 16, 1), 0);
 
-  // Spatial: voxel 0.5 m -> Nyquist 1 cycle/m; radial in cycles per metre.
+  // Spatial: voxel 0.5 m -> Nyquist 1 cycle/m; radial in cycles per meter.
   EXPECT_EQ(spatialBand({0.0, 0.0, 0.0}, 0.5, 5), 0);
   EXPECT_EQ(spatialBand({0.06, 0.0, 0.0}, 0.5, 5), 0);
   EXPECT_EQ(spatialBand({0.0, 0.0625, 0.0}, 0.5, 5), 1);
@@ -340,7 +340,7 @@ TEST(SpectralFusion, NoiseChannelDoesNotDegradeSpatialCorrelation)
   // Clean scene: 150 blurred point blobs (decaying spectrum). Noise: white, drawn
   // independently for target and source, at an RMS of `level` times the clean
   // channel's. Measured: the lag of the fused correlation peak, its peak-to-sidelobe
-  // score against the clean-only score, and the normalised spectral correlation of the
+  // score against the clean-only score, and the normalized spectral correlation of the
   // fused target with the clean target.
   // Tolerances: at half the RMS the peak is exact, >= 60 % of the score is kept
   // (measured 79-83 % over 10 scenes) and the fused spectrum correlates > 0.85 with the
@@ -448,15 +448,15 @@ TEST(SpectralFusion, AllZeroChannelsAreLeftOut)
 TEST(NormalizeChannel, BringsDifferentScalesToComparableSpread)
 {
   std::mt19937 rng(31);
-  std::lognormal_distribution<double> range(2.5, 0.6);  // metres, ~5-40 m
+  std::lognormal_distribution<double> range(2.5, 0.6);  // meters, ~5-40 m
   std::uniform_int_distribution<int> reflect(0, 65535); // raw uint16
-  Eigen::VectorXd metres(5000), counts(5000);
+  Eigen::VectorXd meters(5000), counts(5000);
   for (int i = 0; i < 5000; ++i) {
-    metres[i] = range(rng);
+    meters[i] = range(rng);
     counts[i] = reflect(rng);
   }
-  ASSERT_GT(stddev(counts) / stddev(metres), 1000.0);
-  const Eigen::VectorXd a = normalizeChannel(metres), b = normalizeChannel(counts);
+  ASSERT_GT(stddev(counts) / stddev(meters), 1000.0);
+  const Eigen::VectorXd a = normalizeChannel(meters), b = normalizeChannel(counts);
   for (const double spread : {stddev(a), stddev(b)}) {
     EXPECT_GT(spread, 0.6);
     EXPECT_LT(spread, 1.5);

@@ -164,7 +164,7 @@ TEST(RealPairs, Hdl32AgainstReference)
       pcl_phaser::test::dataPath("lidar/hdl32_fastgicp/relative.txt"), reference,
       &error))
       << error;
-  // The default centre, and ProjectionCenter::Automatic, which must recognise two scans
+  // The default center, and ProjectionCenter::Automatic, which must recognize two scans
   // in their sensor frames and give the same answer.
   using Phaser = pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ>;
   for (const auto center :

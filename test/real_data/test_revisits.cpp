@@ -2,9 +2,9 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * Revisits: two different scans of one place taken metres apart (balm_handheld), with
+ * Revisits: two different scans of one place taken meters apart (balm_handheld), with
  * default parameters about the sensor origin. The reference poses are LiDAR-inertial
- * odometry, good to centimetres: success is judged at 5 deg / 0.6 m.
+ * odometry, good to centimeters: success is judged at 5 deg / 0.6 m.
  */
 #include "real_data_support.h"
 
@@ -78,7 +78,7 @@ Eigen::Matrix4d align(const Cloud::ConstPtr& source, const Cloud::ConstPtr& targ
 
 // Pairs 3-20 m apart, chosen across the distance range before any tuning on them
 // (the first pairs of each distance bin in pairs.txt).
-TEST(Revisits, PairsMetresApartRegisterAndConverge)
+TEST(Revisits, PairsMetersApartRegisterAndConverge)
 {
   PCL_PHASER_REQUIRE_DATA(kDir + "pairs.txt");
   const std::vector<std::pair<std::string, std::string>> pairs = {

@@ -6,7 +6,7 @@
  * recovered, guess, indices, normals, caching, threads, swapped inputs, PCL's kd-tree
  * caching loop, and every bad input of the issue.
  */
-#include <pcl_phaser/core/peak_neighbourhood.h>
+#include <pcl_phaser/core/peak_neighborhood.h>
 #include <pcl_phaser/phaser_registration.h>
 
 #include <pcl/common/transforms.h>
@@ -143,7 +143,7 @@ TEST(PhaserRegistration, RecoversKnownPoseSensorOrigin)
       CloudXYZ out;
       phaser.align(out);
       ASSERT_TRUE(phaser.hasConverged());
-      // On this small synthetic room the normalised refinement costs up to 0.3 deg (it
+      // On this small synthetic room the normalized refinement costs up to 0.3 deg (it
       // gains on the real scans and the simulated LiDAR pairs: doc/benchmarks.md 6).
       EXPECT_LT(rotationErrorDeg(phaser.getFinalTransformation(), T),
                 normalized ? 0.75 : 0.5);
@@ -562,7 +562,7 @@ TEST(PhaserRegistrationBadInput, SinglePointAndDuplicates)
   expectRejected(c, cloudOf({{1, 2, 3}, {1, 2, 3}, {1, 2, 3}}), scene);
 }
 
-TEST(PhaserRegistrationBadInput, AllPointsAtTheCentre)
+TEST(PhaserRegistrationBadInput, AllPointsAtTheCenter)
 {
   const auto scene = makeScene<pcl::PointXYZ>();
   pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> a;
@@ -571,7 +571,7 @@ TEST(PhaserRegistrationBadInput, AllPointsAtTheCentre)
 
 TEST(PhaserRegistrationBadInput, HugeCoordinates)
 {
-  // 1e7 m: float32 spacing is 1 m there. Rejected in both centre modes, either side.
+  // 1e7 m: float32 spacing is 1 m there. Rejected in both center modes, either side.
   auto huge = makeScene<pcl::PointXYZ>();
   for (auto& p : *huge)
     p.x += 1e7f;

@@ -149,7 +149,7 @@ TEST(ScanSimulator, GroundReturnsOfALevelSensorLieAtMinusSensorHeight)
   for (const pcl::PointXYZI& p : cloud)
     ASSERT_NEAR(p.z, -pcl::phaser::kDefaultSensorHeight, 1e-4);
 
-  // In the generated scene the lowest beam sees only ground near the clear centre.
+  // In the generated scene the lowest beam sees only ground near the clear center.
   LidarParameters low = noiseless();
   low.beams = 1;
   const SimulatedScene scene{SceneParameters()};
@@ -176,7 +176,7 @@ TEST(ScanSimulator, AnalyticDistancesToPrimitives)
   EXPECT_EQ(hit.primitive, 0);
   EXPECT_NEAR(hit.normal.x(), -1.0, 1e-12);
   EXPECT_DOUBLE_EQ(hit.reflectivity, 0.5);
-  // A yawed box, along its local x axis towards its centre: face at 1 m from it.
+  // A yawed box, along its local x axis towards its center: face at 1 m from it.
   const Eigen::Vector3d axis(std::cos(yaw), std::sin(yaw), 0.0);
   ASSERT_TRUE(scene.castRay(yawed_center + 6.0 * axis, -axis, 100.0, hit));
   EXPECT_NEAR(hit.range, 5.0, 1e-9);

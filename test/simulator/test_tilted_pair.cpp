@@ -4,7 +4,7 @@
  *
  * The tilt bias of the global stage on simulated LiDAR pairs whose sensors are rolled
  * and pitched against each other (the demo pairs: 2-4 m and 100-160 deg apart, up to
- * 3 deg of roll and pitch): with the energy-normalised refinement the global stage
+ * 3 deg of roll and pitch): with the energy-normalized refinement the global stage
  * recovers the rotation within 1 deg; the plain correlation leans 1.2-1.4 deg towards
  * equal tilt (doc/benchmarks.md section 6).
  */
@@ -64,7 +64,7 @@ TEST(TiltedPair, NormalizedRefinementRemovesTheTiltBias)
       rte[normalized] = (e.transformation.topRightCorner<3, 1>() - t_true).norm();
     }
     std::printf("  seed %u (relative tilt %.2f deg): plain RRE %.3f deg RTE %.3f m | "
-                "normalised RRE %.3f deg RTE %.3f m\n",
+                "normalized RRE %.3f deg RTE %.3f m\n",
                 seed, tilt, rre[0], rte[0], rre[1], rte[1]);
     EXPECT_GT(tilt, 1.0) << "the pair should be tilted; seed " << seed;
     EXPECT_LT(rre[1], 1.0) << "seed " << seed;
@@ -108,7 +108,7 @@ TEST(TiltedPair, DefaultRegistrationConvergesWithinOneDegree)
 
 TEST(TiltedPair, NormalizedRefinementInASinglePass)
 {
-  // One pass refines about the source's own centre, with the supports of pass 1.
+  // One pass refines about the source's own center, with the supports of pass 1.
   const pcl::phaser::ScanPair pair = pcl::phaser::makeDemoPair(1);
   const Engine source = toEngine(pair.source), target = toEngine(pair.target);
   pcl_phaser::PhaserParameters p;

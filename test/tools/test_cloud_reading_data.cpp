@@ -69,7 +69,7 @@ TEST(CloudIoData, KittiBinWithReflectance)
     EXPECT_LE(hi, 1.0f);
     EXPECT_GT(hi, 0.5f); // real reflectance, not garbage or zeros
     EXPECT_GT(max_range, 50.0f);
-    EXPECT_LT(max_range, 130.0f); // HDL-64E range: metres, little-endian floats
+    EXPECT_LT(max_range, 130.0f); // HDL-64E range: meters, little-endian floats
 
     pcl::PointCloud<pcl::PointXYZ> xyz; // a type without intensity works too
     ASSERT_TRUE(loadCloud(path, xyz, &error)) << error;
@@ -148,7 +148,7 @@ TEST(CloudIoData, BunnyPlyWithRangeGrid)
       hi = hi.cwiseMax(p.getVector3fMap());
     }
     const float extent = (hi - lo).maxCoeff();
-    EXPECT_GT(extent, 0.1f); // the bunny is about 0.15 m: metres, not millimetres
+    EXPECT_GT(extent, 0.1f); // the bunny is about 0.15 m: meters, not millimeters
     EXPECT_LT(extent, 0.3f);
   }
 }
@@ -214,13 +214,13 @@ TEST(CloudIoData, OrganizedKinectFramesWithNaN)
     // PCL maps the file's rgba onto PointXYZRGB's rgb field.
     pcl::PointCloud<pcl::PointXYZRGB> rgb;
     ASSERT_TRUE(loadCloud(path, rgb, &error)) << error;
-    std::size_t same_colour = 0, coloured = 0;
+    std::size_t same_color = 0, colored = 0;
     for (std::size_t i = 0; i < rgb.size(); i += 97) {
-      same_colour += (rgb[i].rgba & 0xFFFFFFu) == (rgba[i].rgba & 0xFFFFFFu);
-      coloured += (rgba[i].rgba & 0xFFFFFFu) != 0;
+      same_color += (rgb[i].rgba & 0xFFFFFFu) == (rgba[i].rgba & 0xFFFFFFu);
+      colored += (rgba[i].rgba & 0xFFFFFFu) != 0;
     }
-    EXPECT_EQ(same_colour, (rgb.size() + 96) / 97);
-    EXPECT_GT(coloured, 0u);
+    EXPECT_EQ(same_color, (rgb.size() + 96) / 97);
+    EXPECT_GT(colored, 0u);
   }
 }
 

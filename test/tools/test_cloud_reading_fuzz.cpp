@@ -34,8 +34,8 @@ std::vector<std::pair<std::string, std::string>> validSampleFiles(const TempDir&
   add("ascii.ply");
   pcl::io::savePLYFileBinary(tmp.file("binary.ply"), makeCloud(12, 8));
   add("binary.ply");
-  // Colour and normals: PCL packs uchar red/green/blue(/alpha) into rgb(a).
-  pcl::PointCloud<pcl::PointXYZRGBNormal> colour;
+  // Color and normals: PCL packs uchar red/green/blue(/alpha) into rgb(a).
+  pcl::PointCloud<pcl::PointXYZRGBNormal> color;
   for (int i = 0; i < 8; ++i) {
     pcl::PointXYZRGBNormal p;
     p.x = static_cast<float>(i);
@@ -45,14 +45,14 @@ std::vector<std::pair<std::string, std::string>> validSampleFiles(const TempDir&
     p.g = 7;
     p.b = 200;
     p.normal_x = 1.0f;
-    colour.push_back(p);
+    color.push_back(p);
   }
-  pcl::io::savePLYFileBinary(tmp.file("colour_binary.ply"), colour);
-  add("colour_binary.ply");
-  pcl::io::savePLYFileASCII(tmp.file("colour_ascii.ply"), colour);
-  add("colour_ascii.ply");
-  pcl::io::savePCDFileBinaryCompressed(tmp.file("colour.pcd"), colour);
-  add("colour.pcd");
+  pcl::io::savePLYFileBinary(tmp.file("color_binary.ply"), color);
+  add("color_binary.ply");
+  pcl::io::savePLYFileASCII(tmp.file("color_ascii.ply"), color);
+  add("color_ascii.ply");
+  pcl::io::savePCDFileBinaryCompressed(tmp.file("color.pcd"), color);
+  add("color.pcd");
   writeFile(tmp.file("grid.ply"),
             "ply\nformat ascii 1.0\nobj_info num_cols 2\nobj_info num_rows 2\n"
             "element vertex 2\nproperty float x\nproperty float y\n"

@@ -59,7 +59,7 @@ TEST(CloudIoSave, BinWithoutIntensityWritesZero)
 }
 
 /** A PointXYZINormal or PointXYZRGBNormal cloud whose every field holds an exactly
- *  representable value that differs from point to point (colour alpha 255). */
+ *  representable value that differs from point to point (color alpha 255). */
 template <typename PointT>
 pcl::PointCloud<PointT> makeNormalCloud(std::size_t n)
 {

@@ -322,7 +322,7 @@ TEST_F(PclPhaserAlign, HelpExitsZero)
     const ToolRun r = run(flag);
     EXPECT_EQ(r.code, 0) << flag;
     const std::string all = r.out + r.err;
-    for (const char* word : {"--bandwidth", "--centre", "-icp", "--json", "--demo",
+    for (const char* word : {"--bandwidth", "--center", "-icp", "--json", "--demo",
                              "--screenshot", "Exit codes"})
       EXPECT_NE(all.find(word), std::string::npos) << word << " missing from " << flag;
   }
@@ -412,7 +412,7 @@ TEST_F(PclPhaserAlign, GroundTruthOnRealScans)
   const ToolRun r =
       run(quote(dataPath(rel + "251371071.pcd")) + " " +
           quote(dataPath(rel + "251370668.pcd")) + " --gt " +
-          quote(dataPath(rel + "relative.txt")) + " --json --centre auto");
+          quote(dataPath(rel + "relative.txt")) + " --json --center auto");
   EXPECT_EQ(r.code, 0)
       << r.err; // auto: these LiDAR scans are projected about their origin
   Json j;
@@ -530,8 +530,8 @@ TEST_F(PclPhaserAlign, BadInputsFailWithAMessage)
       {"src.pcd tgt.pcd --threads 0", 1},
       {"src.pcd tgt.pcd --grid 4", 1},
       {"src.pcd tgt.pcd --passes 9", 1},
-      {"src.pcd tgt.pcd --centre middle", 1},
-      {"src.pcd tgt.pcd --centre automatic", 1},
+      {"src.pcd tgt.pcd --center middle", 1},
+      {"src.pcd tgt.pcd --center automatic", 1},
       {"src.pcd tgt.pcd --icp-dist -1", 1},
       {"src.pcd tgt.pcd --icp-dist nan", 1},
       {"src.pcd tgt.pcd --size 640", 1},

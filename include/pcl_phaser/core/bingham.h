@@ -24,7 +24,7 @@ namespace pcl_phaser {
  *  resolution; a single sample (or identical samples) is fitted with this value. */
 constexpr double kMaxBinghamConcentration = 1e6;
 
-/** \brief The normalisation constant F(Z) = int_{S^3} exp(sum_i z_i x_i^2) dx of a
+/** \brief The normalization constant F(Z) = int_{S^3} exp(sum_i z_i x_i^2) dx of a
  *  4-D Bingham distribution (dx: surface measure, area(S^3) = 2 pi^2) and its
  *  derivatives. F depends on the concentrations only, not on the orientation. */
 struct BinghamNormalizer {
@@ -61,7 +61,7 @@ BinghamNormalizer binghamNormalizer(const Eigen::Vector4d& z,
  *  are raised to that value before solving (the MLE is unbounded for omega_i -> 0),
  *  so rank-deficient scatter gives z ~= -kMaxBinghamConcentration in the null space.
  *  Equal omegas give equal z; omega = (1/4, 1/4, 1/4, 1/4) gives Z = 0.
- *  \param[in] omega non-negative, normalised internally to sum 1
+ *  \param[in] omega non-negative, normalized internally to sum 1
  *  \param[out] residual if given, max_i |E[x_i^2] - omega_i| / omega_i over the three
  *  smaller (floored) omegas at the result; < 1e-10 when converged
  *  \throws InvalidArgument on negative or non-finite values or a zero sum */
@@ -82,13 +82,13 @@ enum class TangentFrame {
 struct BinghamDistribution {
   Eigen::Matrix4d M = Eigen::Matrix4d::Identity(); ///< orientation, columns m_i
   Eigen::Vector4d Z = Eigen::Vector4d::Zero();     ///< concentrations, Z(3) = 0
-  double F = 19.739208802178717; ///< normalisation constant F(Z) (default 2 pi^2)
+  double F = 19.739208802178717; ///< normalization constant F(Z) (default 2 pi^2)
   Eigen::Vector4d dF = Eigen::Vector4d::Constant(F / 4.0); ///< dF/dZ
 
   /** \brief The mode (last column of M), sign chosen so that w >= 0. */
   Eigen::Vector4d mode() const;
 
-  /** \brief Density at \a q (normalised first; q and -q give the same value). */
+  /** \brief Density at \a q (normalized first; q and -q give the same value). */
   double pdf(const Eigen::Vector4d& q) const;
 
   /** \brief Exact second moment E[q q^T] = M diag(dF / F) M^T (trace 1). */
@@ -118,9 +118,9 @@ struct BinghamDistribution {
 BinghamDistribution makeBingham(const Eigen::Matrix4d& M, const Eigen::Vector4d& Z);
 
 /** \brief Weighted maximum-likelihood Bingham fit (Bingham 1974): the scatter matrix
- *  S = sum_i w_i q_i q_i^T / sum_i w_i is diagonalised (M = eigenvectors, ascending)
+ *  S = sum_i w_i q_i q_i^T / sum_i w_i is diagonalized (M = eigenvectors, ascending)
  *  and Z = binghamMaximumLikelihood(eigenvalues). The sign of each q_i is irrelevant.
- *  \param[in] quaternions samples (w, x, y, z); non-unit ones are normalised
+ *  \param[in] quaternions samples (w, x, y, z); non-unit ones are normalized
  *  \param[in] weights one non-negative weight per sample, or empty for equal weights
  *  \throws InvalidArgument if there are no samples, sizes differ, a weight is
  *  negative or non-finite, the weights sum to zero, or a quaternion is zero or not

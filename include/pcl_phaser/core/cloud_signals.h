@@ -17,7 +17,7 @@ namespace pcl_phaser {
 
 /** \brief Each channel mapped robustly to a common scale (normalizeChannel: median
  *  removed, divided by the scaled MAD, clamped), so raw uint16 reflectivity cannot
- * drown metres of range. Per cloud. \throws InvalidArgument if a size differs from \a
+ * drown meters of range. Per cloud. \throws InvalidArgument if a size differs from \a
  * n. */
 ChannelValues normalizeChannels(const ChannelValues& channels, Eigen::Index n);
 
@@ -25,14 +25,14 @@ ChannelValues normalizeChannels(const ChannelValues& channels, Eigen::Index n);
  *  on the sphere about the points' origin (shared cell lookup), one SHT each, fused by
  *  the Laplacian pyramid over spherical degree (fuseSpherical). With no channels it is
  *  the range spectrum.
- *  \param[in] points 3 x n, relative to the projection centre
- *  \param[in] channels normalised channel values (may be empty)
+ *  \param[in] points 3 x n, relative to the projection center
+ *  \param[in] channels normalized channel values (may be empty)
  *  \param[in] bandwidth B
  *  \param[in] levels pyramid levels
  *  \param[in] num_threads worker threads
  *  \param[out] observed_cells cells with at least one point
  *  \param[out] sampling_ms, sht_ms time spent binning and transforming
- *  \param[out] support when given, the support of the signal for the normalised
+ *  \param[out] support when given, the support of the signal for the normalized
  *  refinement (refineRotation): the observed cells and the energy of the signal on
  *  them (the squared de-meaned range, or with channels the squared fused function;
  *  two or three more transforms) */
@@ -48,7 +48,7 @@ SphericalSpectrum cloudSphericalSpectrum(const Eigen::Matrix3Xd& points,
  *  soft occupancy), one r2c each, fused over radial frequency shells (fuseSpatial).
  *  \param[in] grid the target's grid
  *  \param[in] points 3 x n in the grid's frame
- *  \param[in] channels normalised channel values (may be empty)
+ *  \param[in] channels normalized channel values (may be empty)
  *  \param[in] levels pyramid levels
  *  \param[in] num_threads worker threads */
 SpatialSpectrum cloudSpatialSpectrum(const SpatialGrid& grid,

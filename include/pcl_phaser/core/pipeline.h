@@ -29,7 +29,7 @@ enum class ProjectionCenter {
                 ///< frame)
   Centroid,     ///< each cloud's centroid (object scans, clouds far from their origin)
   /** SensorOrigin when both clouds look like spinning-LiDAR scans in their sensor frame
-   *  (looksSensorCentred: they surround their origin in a band with empty poles), else
+   *  (looksSensorCentered: they surround their origin in a band with empty poles), else
    *  Centroid; PhaserResult::projection_center tells which. */
   Automatic
 };

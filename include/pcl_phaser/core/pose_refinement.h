@@ -32,7 +32,7 @@ RigidPose refinePose(const PointIndex& target, const VerificationSamples& sample
 
 /** \brief refinePose within a trust region: \a start when the refined pose turned by
  *  more than \a max_angle (radians) or moved the sensor by more than \a max_shift
- *  (metres) from it (a climb that far left the basin it started in). */
+ *  (meters) from it (a climb that far left the basin it started in). */
 RigidPose refinePoseWithin(const PointIndex& target, const VerificationSamples& samples,
                            const RigidPose& start, int iterations, double max_angle,
                            double max_shift);

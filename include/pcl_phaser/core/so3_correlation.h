@@ -44,7 +44,7 @@ public:
   /** \brief Grid sample with the largest C; ties go to the lowest flat index, for any
    *  \a num_threads. On a grid of limited tilt (So3Correlator::correlate with
    *  beta_rows) only the rows whose beta neighbors were computed take part, so the
-   *  3 x 3 x 3 block around the result (rotationNeighbourhood) is always sampled. */
+   *  3 x 3 x 3 block around the result (rotationNeighborhood) is always sampled. */
   So3GridIndex argmax(int num_threads = 1) const;
 
   /** \brief Grid sample with the largest C among those within \a radius (radians,

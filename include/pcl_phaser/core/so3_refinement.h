@@ -16,7 +16,7 @@ namespace pcl_phaser {
 struct RefinedRotation {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   double value = 0.0; ///< exact C at \a rotation
-  /** \brief The maximised objective at \a rotation: C itself, or C normalised by the
+  /** \brief The maximized objective at \a rotation: C itself, or C normalized by the
    *  observed energy when supports were given (see refineRotation). */
   double objective = 0.0;
   int iterations = 0;
@@ -34,14 +34,14 @@ struct SphericalSupport {
  *  (19-point stencil, step clamped to the grid spacing, halved each iteration);
  *  pole-safe and coordinate-free (doc/so3-correlation-spec.md section 5).
  *
- * With the supports of both signals the objective is the energy-normalised
+ * With the supports of both signals the objective is the energy-normalized
  * correlation C(R) / sqrt(E_f(R) E_h(R)), where E_f(R) = <f^2, m_h(R^-1 .)> is the
  * energy of the target over the rotated source's observed region and E_h(R) =
  * <m_f, h^2(R^-1 .)> that of the source over the target's. Unobserved cells are zero,
  * so plain C also rewards overlapping the two observed regions where the signals are
  * strong: two LiDARs tilted against each other have tilted field-of-view bands whose
  * edges (the near ground, far below the mean range) pull C towards equal tilt by about
- * 40 % of the relative tilt. The normalisation divides that reward out. The three
+ * 40 % of the relative tilt. The normalization divides that reward out. The three
  * correlations share one Wigner recurrence (evaluateCorrelations).
  *  \param[in] target, source spectra (B x B) as given to So3Correlator
  *  \param[in] start a grid peak

@@ -29,7 +29,7 @@ void* spatialBufferAllocate(std::size_t bytes);
 void spatialBufferFree(void* p) noexcept;
 
 /** \brief std::allocator replacement that returns FFTW-aligned memory. Elements added
- *  without a value are default-initialised (left as they are for double), not zeroed:
+ *  without a value are default-initialized (left as they are for double), not zeroed:
  *  the volumes and spectra are written whole by the FFTs that fill them, and zeroing
  *  megabytes first cost a single-threaded pass over each. */
 template <typename T>
@@ -80,13 +80,13 @@ using SpatialComplexArray =
  *  voxel (0, 0, 0), per-axis dimensions that need not be equal.
  *
  *  Voxel (ix, iy, iz) covers [origin + i * voxel_size, origin + (i + 1) * voxel_size)
- *  on each axis; its centre is origin + (i + 0.5) * voxel_size. Memory is row-major
+ *  on each axis; its center is origin + (i + 0.5) * voxel_size. Memory is row-major
  *  with z fastest: flat = (ix * ny + iy) * nz + iz (the layout FFTW's 3-D transforms
  *  expect). */
 struct SpatialGrid {
-  /** \brief Corner of voxel (0, 0, 0) in metres. */
+  /** \brief Corner of voxel (0, 0, 0) in meters. */
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  /** \brief Edge length of a voxel in metres. */
+  /** \brief Edge length of a voxel in meters. */
   double voxel_size = 1.0;
   /** \brief Number of voxels along x, y, z. */
   Eigen::Vector3i dims = Eigen::Vector3i::Zero();
@@ -116,11 +116,11 @@ struct SpatialGrid {
             static_cast<int>(flat % nz)};
   }
 
-  /** \brief Edge lengths of the whole grid in metres. */
+  /** \brief Edge lengths of the whole grid in meters. */
   Eigen::Vector3d extent() const { return dims.cast<double>() * voxel_size; }
 
-  /** \brief Centre of voxel \a index in metres. */
-  Eigen::Vector3d voxelCentre(const Eigen::Vector3i& index) const
+  /** \brief Center of voxel \a index in meters. */
+  Eigen::Vector3d voxelCenter(const Eigen::Vector3i& index) const
   {
     return origin + (index.cast<double>().array() + 0.5).matrix() * voxel_size;
   }
@@ -138,7 +138,7 @@ struct SpatialGridParameters {
   /** \brief Voxels along the longest axis (legal 8..1024, rounded up to 2^a 3^b 5^c).
    *  Used when voxel_size == 0; the voxel size then follows from the padded extent. */
   int grid_size = 128;
-  /** \brief Explicit voxel size in metres; > 0 overrides grid_size, 0 means unset,
+  /** \brief Explicit voxel size in meters; > 0 overrides grid_size, 0 means unset,
    *  negative is illegal. The per-axis dims then follow from the padded extent and must
    *  stay <= 1024. */
   double voxel_size = 0.0;
@@ -146,7 +146,7 @@ struct SpatialGridParameters {
    *  extent. 0.5 doubles each axis, which makes the circular correlation of two equally
    *  sized supports equal to the linear one and allows shifts up to half the extent. */
   double padding = 0.5;
-  /** \brief Lower bound of the per-side margin in metres (largest expected shift along
+  /** \brief Lower bound of the per-side margin in meters (largest expected shift along
    *  a thin axis, e.g. z of a ground-robot scan). */
   double min_margin = 0.0;
 };
@@ -159,8 +159,8 @@ int nextFftFriendlySize(int n);
  *  Per axis a with bounding-box extent e_a the covered length is e_a + 2 *
  *  max(padding*e_a, min_margin) plus one voxel per side for the trilinear splat,
  *  rounded up to an FFT-friendly voxel count (at least 8); the extra voxels from
- *  rounding are split evenly, so the box stays centred on the points. The grid depends
- *  on the target only, so its spectrum can be cached; a source voxelised into it loses
+ *  rounding are split evenly, so the box stays centered on the points. The grid depends
+ *  on the target only, so its spectrum can be cached; a source voxelized into it loses
  *  the points that fall outside (they are dropped, never wrapped). Non-finite points
  *  are ignored.
  *  \throws InvalidArgument for illegal parameters, for a point set without finite
@@ -187,10 +187,10 @@ struct SpatialVoxelParameters {
   int num_threads = 1;
 };
 
-/** \brief Voxelises \a points into \a grid with trilinear splatting, each point with
+/** \brief Voxelizes \a points into \a grid with trilinear splatting, each point with
  *  value 1.
  *
- *  Every point spreads the weights of linear interpolation to the 8 voxel centres
+ *  Every point spreads the weights of linear interpolation to the 8 voxel centers
  *  around it (so the correlation surface is smooth in the shift and its peak can be
  *  interpolated); weights that land outside the grid are dropped, never wrapped. With W
  *  the summed weight and S the summed weight * value of a voxel, the stored value is
@@ -208,7 +208,7 @@ struct SpatialVoxelParameters {
 SpatialVolume voxelize(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
                        const SpatialVoxelParameters& parameters = {});
 
-/** \brief As above with one value per point (e.g. a normalised channel).
+/** \brief As above with one value per point (e.g. a normalized channel).
  *  \throws InvalidArgument also if values.size() != points.cols(). */
 SpatialVolume voxelize(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
                        const Eigen::VectorXd& values,
@@ -219,7 +219,7 @@ SpatialVolume voxelize(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
  *
  *  coefficients holds nx * ny * (nz / 2 + 1) values, flat index (ix * ny + iy) * hz +
  *  kz with hz = nz / 2 + 1. The omitted kz < 0 half is the complex conjugate of the
- *  stored one (Hermitian symmetry). Unnormalised: coefficient(0) is the sum of all
+ *  stored one (Hermitian symmetry). Unnormalized: coefficient(0) is the sum of all
  *  voxel values. */
 struct SpatialSpectrum {
   /** \brief Geometry of the transformed volume (gives the frequencies). */
@@ -246,7 +246,7 @@ struct SpatialSpectrum {
     return {kx, ky, kz};
   }
 
-  /** \brief Frequency of coefficient \a flat in cycles per metre, k_a / (n_a * voxel).
+  /** \brief Frequency of coefficient \a flat in cycles per meter, k_a / (n_a * voxel).
    *  Its norm is the radial frequency a band-pass fusion should use: unlike the integer
    *  index it is comparable across axes of different length. */
   Eigen::Vector3d frequency(std::size_t flat) const
@@ -277,7 +277,7 @@ SpatialSpectrum computeSpectrum(const SpatialVolume& volume, int num_threads = 1
  *
  *  The returned volume has the spectra's dims and voxel size; its origin is the metric
  *  shift of lag 0, target.grid.origin - source.grid.origin (zero when both were
- *  voxelised into one grid). Lag index i stands for i, or i - n when i > n / 2. If the
+ *  voxelized into one grid). Lag index i stands for i, or i - n when i > n / 2. If the
  *  target equals the source moved by +t, the peak is at lag t.
  *  \throws InvalidArgument if dims or voxel sizes differ or num_threads < 0. */
 SpatialVolume correlateSpectra(const SpatialSpectrum& target,
@@ -291,20 +291,20 @@ SpatialVolume correlateSpectra(const SpatialSpectrum& target, SpatialSpectrum&& 
 /** \brief The correlation with a partly whitened cross-power spectrum: each
  *  coefficient of F conj(G) divided by its magnitude to the power \a exponent (0: plain
  *  correlation, 1: phase correlation), consuming \a source. Whitening flattens the
- *  broad overlap hill of two finite occupancy grids (which favours the shift that
- *  stacks their centres, i.e. the two sensors) and keeps the sharp peak of the
+ *  broad overlap hill of two finite occupancy grids (which favors the shift that
+ *  stacks their centers, i.e. the two sensors) and keeps the sharp peak of the
  *  structures they share.
  *  \throws InvalidArgument as correlateSpectra, or if exponent is outside [0, 1]. */
 SpatialVolume correlateSpectraWhitened(const SpatialSpectrum& target,
                                        SpatialSpectrum&& source, double exponent,
                                        int num_threads = 1);
 
-/** \brief Sub-voxel peak interpolation, per axis through the peak and its 2 neighbours
+/** \brief Sub-voxel peak interpolation, per axis through the peak and its 2 neighbors
  *  (wrapping around). Measured on random 40 x 30 x 8 m clouds (worst axis error over
  *  the test shifts): none 0.5 voxel, parabola 0.10, Gaussian 0.05-0.095; a 3x3x3
  *  least-squares quadric was also tried and was not better than the Gaussian. The
  *  residual is a bias from the peak shape that vanishes at zero offset: moving the
- *  source by the estimate, re-voxelising and correlating again leaves ~0.002-0.01. */
+ *  source by the estimate, re-voxelizing and correlating again leaves ~0.002-0.01. */
 enum class SpatialPeakRefinement {
   kNone,      ///< integer argmax only (error up to 0.5 voxel)
   kParabolic, ///< parabola through the raw values
@@ -313,7 +313,7 @@ enum class SpatialPeakRefinement {
 
 /** \brief Result of the translation search. */
 struct SpatialCorrelationResult {
-  /** \brief Translation in metres that moves the source onto the target (sub-voxel). */
+  /** \brief Translation in meters that moves the source onto the target (sub-voxel). */
   Eigen::Vector3d shift = Eigen::Vector3d::Zero();
   /** \brief Signed lag in voxels, sub-voxel refined (shift = origin + lag * voxel). */
   Eigen::Vector3d lag = Eigen::Vector3d::Zero();
@@ -322,15 +322,15 @@ struct SpatialCorrelationResult {
   /** \brief Correlation value at index. */
   double peak_value = 0.0;
   /** \brief Peak quality: peak-to-sidelobe ratio of the correlation's discrete
-   *  Laplacian (c minus the mean of its 6 face neighbours), (L(peak) - mean L) / stddev
-   *  L over the lags outside the 5x5x5 neighbourhood of the peak. The high-pass ignores
+   *  Laplacian (c minus the mean of its 6 face neighbors), (L(peak) - mean L) / stddev
+   *  L over the lags outside the 5x5x5 neighborhood of the peak. The high-pass ignores
    *  the broad overlap pyramid of occupancy correlations, so a true match scores far
    *  above unrelated clouds. 0 for a flat (e.g. all-zero) surface. */
   double score = 0.0;
 };
 
 /** \brief Finds and refines the maximum of a correlation volume from correlateSpectra.
- *  Ties go to the lowest flat index; neighbours wrap around. Without \a with_score the
+ *  Ties go to the lowest flat index; neighbors wrap around. Without \a with_score the
  *  peak-to-sidelobe score (a pass over the whole volume) is left at 0. Deterministic
  * for any \a num_threads. An all-zero volume (empty source or target) gives lag index
  * 0, peak value 0 and score 0. \throws InvalidArgument if the volume is invalid or

@@ -30,13 +30,13 @@ namespace pcl_phaser {
  *
  *  Unlike the reference implementation (doc: reference-implementation-notes.md section
  *  6), the bands follow the true frequency structure, not a flattened memory layout:
- *  spherical degree l (rotation-invariant) and radial frequency |k| in cycles per metre
+ *  spherical degree l (rotation-invariant) and radial frequency |k| in cycles per meter
  *  (isotropic, comparable across axes of different length). With L levels the bands are
  *  band 0 = [0, f_max / 2^(L-1)) (averaged) and band b = [f_max / 2^(L-b), f_max /
  *  2^(L-b-1)) for b = 1..L-1 (per-channel selection); the last band is open above.
  *
  *  Target and source are fused independently by the same rule: the selection of a
- *  cloud depends only on that cloud's channels. Channels should be normalised first
+ *  cloud depends only on that cloud's channels. Channels should be normalized first
  *  (normalizeChannel), otherwise the channel with the largest numeric scale wins every
  *  selection. A channel whose spectrum is exactly zero (a field the cloud lacks, or a
  *  constant one after normalizeChannel) is left out: it would never win a selection but
@@ -74,8 +74,8 @@ int sphericalBand(int degree, int bandwidth, int levels);
  *  the grid, so band 0 is |f| < f_max / 2^(L-1) and band L-1 holds |f| >= f_max / 2,
  *  including the corners of the spectrum beyond the Nyquist sphere. The bands depend
  *  only on the voxel size, not on the grid dimensions.
- *  \param[in] frequency frequency vector in cycles per metre
- * (SpatialSpectrum::frequency) \param[in] voxel_size voxel edge in metres, > 0
+ *  \param[in] frequency frequency vector in cycles per meter
+ * (SpatialSpectrum::frequency) \param[in] voxel_size voxel edge in meters, > 0
  *  \param[in] levels L >= 1
  *  \throws InvalidArgument for voxel_size <= 0 or levels < 1 */
 int spatialBand(const Eigen::Vector3d& frequency, double voxel_size, int levels);
@@ -134,8 +134,8 @@ std::vector<int> selectSpatialChannels(const std::vector<SpatialSpectrum>& chann
 SpatialSpectrum fuseSpatial(const std::vector<SpatialSpectrum>& channels,
                             const FusionParameters& parameters = {});
 
-/** \brief Robust per-cloud normalisation of one channel before its transform, so that
- *  channels of very different numeric scale (uint16 reflectivity, ranges in metres,
+/** \brief Robust per-cloud normalization of one channel before its transform, so that
+ *  channels of very different numeric scale (uint16 reflectivity, ranges in meters,
  *  intensities in [0, 1]) compete fairly in the fusion.
  *
  *  Returns (v - median) / s clamped to [-clamp, clamp], with s = 1.4826 MAD (the

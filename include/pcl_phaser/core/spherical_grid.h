@@ -39,7 +39,7 @@ std::vector<double> quadratureWeights(int bandwidth);
 Eigen::Vector3d sampleDirection(int ring, int column, int bandwidth);
 
 /** \brief Index j * 2B + k of the cell that contains the direction of \a p (which need
- * not be normalised). Returns -1 for the zero vector or non-finite input. */
+ * not be normalized). Returns -1 for the zero vector or non-finite input. */
 int cellIndex(const Eigen::Vector3d& p, int bandwidth);
 
 } // namespace pcl_phaser

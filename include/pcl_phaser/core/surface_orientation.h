@@ -21,14 +21,14 @@ struct SurfacePatches {
   Eigen::Matrix3Xd normals;       ///< unit normals, 3 x m
   Eigen::VectorXd weights;        ///< planarity in [0, 1], m
   std::vector<std::int64_t> keys; ///< voxelKey of each patch's voxel, m
-  double voxel_size = 0.0;        ///< edge of the voxels, metres
+  double voxel_size = 0.0;        ///< edge of the voxels, meters
   /** \brief Median over the patches of the RMS distance of their points from their
-   *  plane (sqrt(l0 / n)), metres: the surface thickness that noise gives a scan. 0
+   *  plane (sqrt(l0 / n)), meters: the surface thickness that noise gives a scan. 0
    *  without patches. */
   double thickness = 0.0;
 };
 
-/** \brief The planar patches of \a points in voxels of edge \a voxel_size (metres,
+/** \brief The planar patches of \a points in voxels of edge \a voxel_size (meters,
  *  > 0) that hold at least \a min_points points (>= 3).
  *  \param[in] viewpoint normals are turned to face it (the sensor), so a wall seen
  *  from the same side gives the same normal in both scans */
@@ -55,7 +55,7 @@ Eigen::Matrix3Xd patchNormalsAt(const SurfacePatches& patches,
  *  normal-space sampling does for ICP (Rusinkiewicz and Levoy, 3DIM 2001): each sample
  *  takes the normal of the patch whose voxel holds it, samples are counted per
  *  orientation cell (a 8 x 8 Driscoll-Healy grid; samples without a patch form one more
- *  class), and a sample weighs 1 / sqrt(count of its class), normalised to sum 1. So
+ *  class), and a sample weighs 1 / sqrt(count of its class), normalized to sum 1. So
  *  the ground, a large share of every outdoor scan that matches under any yaw, no
  *  longer outvotes the walls that fix the pose.
  *  \param[in] patches from surfacePatches \param[in] samples 3 x m */

@@ -39,17 +39,17 @@ struct PoseVerification {
 };
 
 /** \brief What the target's sensor saw: per direction cell of the Driscoll-Healy grid
- *  of bandwidth B about the target's projection centre (its sensor origin), the nearest
- *  return in the cell and its 8 neighbours; 0 marks a cell without returns (nothing is
+ *  of bandwidth B about the target's projection center (its sensor origin), the nearest
+ *  return in the cell and its 8 neighbors; 0 marks a cell without returns (nothing is
  *  known there). */
 struct FreeSpace {
   int bandwidth = 0;
   std::vector<double> nearest; ///< 4 B^2 cells
-  double margin = 0.0;         ///< metres a sample must be in front to violate
+  double margin = 0.0;         ///< meters a sample must be in front to violate
 };
 
 /** \brief FreeSpace of \a points (3 x n, relative to the sensor origin).
- *  \param[in] bandwidth B of the direction cells (1..256) \param[in] margin metres */
+ *  \param[in] bandwidth B of the direction cells (1..256) \param[in] margin meters */
 FreeSpace freeSpace(const Eigen::Matrix3Xd& points, int bandwidth, double margin,
                     int num_threads = 1);
 

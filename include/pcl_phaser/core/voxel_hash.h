@@ -18,7 +18,7 @@ namespace pcl_phaser {
  *  use is deterministic. Points that are not finite or lie beyond 2^20 voxels of the
  *  origin are left out. */
 struct VoxelGroups {
-  double voxel_size = 1.0;        ///< edge of a voxel, metres
+  double voxel_size = 1.0;        ///< edge of a voxel, meters
   std::vector<std::int64_t> keys; ///< one per group, increasing
   std::vector<Eigen::Index>
       offsets;                     ///< group g holds order[offsets[g], offsets[g + 1])
@@ -43,7 +43,7 @@ Eigen::Matrix3Xd voxelCentroids(const Eigen::Matrix3Xd& points, double voxel_siz
 class PointIndex {
 public:
   PointIndex() = default;
-  /** \param[in] points 3 x n (copied) \param[in] radius query radius in metres (> 0)
+  /** \param[in] points 3 x n (copied) \param[in] radius query radius in meters (> 0)
    *  \param[in] normals optional unit normal per point (3 x n; zero: none) */
   PointIndex(const Eigen::Matrix3Xd& points, double radius,
              const Eigen::Matrix3Xd& normals = Eigen::Matrix3Xd());

@@ -78,7 +78,7 @@ std::shared_ptr<const WignerStepTable> wignerStepTable(int bandwidth);
 
 /** \brief d^l_{m'm}(beta) (Wigner/Sakurai convention, |d| <= 1) for l = 0..B-1; entries
  *  with l < max(|m'|,|m|) are zero. beta in [0, pi]. Reference helper for evaluation
- * and tests; the correlation runs its own vectorised loop. */
+ * and tests; the correlation runs its own vectorized loop. */
 std::vector<double> wignerSmallD(int mp, int m, int bandwidth, double beta);
 
 } // namespace pcl_phaser

@@ -2,7 +2,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  */
-#include <pcl_phaser/core/projection_centre.h>
+#include <pcl_phaser/core/projection_center.h>
 #include <pcl_phaser/core/spherical_grid.h>
 
 #include <Eigen/Eigenvalues>
@@ -70,8 +70,8 @@ double polarFraction(const Eigen::Matrix3Xd& points, const Eigen::Vector3d& view
   return static_cast<double>(polar) / static_cast<double>(directions.size());
 }
 
-bool looksSensorCentred(const Eigen::Matrix3Xd& points,
-                        const Eigen::Vector3d& viewpoint)
+bool looksSensorCentered(const Eigen::Matrix3Xd& points,
+                         const Eigen::Vector3d& viewpoint)
 {
   return viewCoverage(points, viewpoint) >= kSensorFrameCoverage &&
          polarFraction(points, viewpoint) <= kSensorFramePolarFraction;

@@ -3,9 +3,9 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  *
  * RGB-D: two consecutive Kinect frames of ../shared/data/pcl (organized, with NaNs)
- * under synthetic large transforms, registered as PointXYZRGBA with colour fused and
- * with colour switched off. Both must succeed; colour must change the estimate (the
- * channel really enters); both results are printed so the effect of colour is on
+ * under synthetic large transforms, registered as PointXYZRGBA with color fused and
+ * with color switched off. Both must succeed; color must change the estimate (the
+ * channel really enters); both results are printed so the effect of color is on
  * record (doc/benchmarks.md): on these frames geometry alone is not ambiguous.
  */
 #include "../registration/test_data.h"
@@ -37,7 +37,7 @@ CloudC::Ptr loadFrame(const std::string& relative)
   return cloud;
 }
 
-TEST(RealRgbd, KinectFramesUnderLargePosesWithAndWithoutColour)
+TEST(RealRgbd, KinectFramesUnderLargePosesWithAndWithoutColor)
 {
   const std::string a = "pcl/frame_20121214T142255.814212.pcd";
   const std::string b = "pcl/frame_20121214T142256.068683.pcd";
@@ -56,34 +56,34 @@ TEST(RealRgbd, KinectFramesUnderLargePosesWithAndWithoutColour)
     pcl::transformPointCloud(*second, *source, Eigen::Matrix4d(T.inverse()));
     double rre[2], rte[2];
     Eigen::Matrix4d estimate[2];
-    for (int use_colour = 1; use_colour >= 0; --use_colour) {
+    for (int use_color = 1; use_color >= 0; --use_color) {
       pcl::PhaserRegistration<PointC, PointC> phaser;
       phaser.setNumberOfThreads(2);
-      phaser.setUseColor(use_colour != 0);
+      phaser.setUseColor(use_color != 0);
       // Centroid: a 57 x 43 deg camera frame moved by T^-1 no longer has its camera at
       // the origin, and the narrow cone turns that offset into strong parallax. About
-      // the sensor origin colour fused 0/5 and range only 3/5 (doc/benchmarks.md).
+      // the sensor origin color fused 0/5 and range only 3/5 (doc/benchmarks.md).
       phaser.setProjectionCenter(decltype(phaser)::ProjectionCenter::Centroid);
       phaser.setInputSource(source);
       phaser.setInputTarget(target);
       CloudC aligned;
       phaser.align(aligned);
       const Eigen::Matrix4d G = phaser.getFinalTransformation().cast<double>();
-      estimate[use_colour] = G;
+      estimate[use_color] = G;
       EXPECT_EQ((phaser.getFusedChannels() & pcl::phaser::CHANNEL_COLOR) != 0u,
-                use_colour != 0);
-      rre[use_colour] = pcl_phaser::bench::rreDeg(G, T);
-      rte[use_colour] = pcl_phaser::bench::rteM(G, T);
+                use_color != 0);
+      rre[use_color] = pcl_phaser::bench::rreDeg(G, T);
+      rte[use_color] = pcl_phaser::bench::rteM(G, T);
       const bool ok =
-          phaser.hasConverged() && rre[use_colour] < 3.0 && rte[use_colour] < 0.05;
-      (use_colour ? fused_ok : range_ok) += ok;
+          phaser.hasConverged() && rre[use_color] < 3.0 && rte[use_color] < 0.05;
+      (use_color ? fused_ok : range_ok) += ok;
     }
-    EXPECT_GT((estimate[1] - estimate[0]).norm(), 1e-4) << "colour changed nothing";
-    std::printf("  pose %d: colour fused RRE %.3f deg RTE %.4f m | range only RRE %.3f "
+    EXPECT_GT((estimate[1] - estimate[0]).norm(), 1e-4) << "color changed nothing";
+    std::printf("  pose %d: color fused RRE %.3f deg RTE %.4f m | range only RRE %.3f "
                 "deg RTE %.4f m\n",
                 k, rre[1], rte[1], rre[0], rte[0]);
   }
-  std::printf("  success: colour fused %d/%d, range only %d/%d\n", fused_ok, poses,
+  std::printf("  success: color fused %d/%d, range only %d/%d\n", fused_ok, poses,
               range_ok, poses);
   EXPECT_EQ(fused_ok, poses);
   EXPECT_EQ(range_ok, poses);

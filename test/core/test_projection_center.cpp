@@ -5,7 +5,7 @@
  * The cues of ProjectionCenter::Automatic on synthetic direction sets with known
  * answers.
  */
-#include <pcl_phaser/core/projection_centre.h>
+#include <pcl_phaser/core/projection_center.h>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -15,14 +15,14 @@
 
 namespace {
 
-using pcl_phaser::looksSensorCentred;
+using pcl_phaser::looksSensorCentered;
 using pcl_phaser::polarFraction;
 using pcl_phaser::viewCoverage;
 
 /** \a n points at ranges 2..30 m in directions uniform over the band |elevation| <=
- *  \a half_fov, seen from \a centre and rotated by \a R. */
+ *  \a half_fov, seen from \a center and rotated by \a R. */
 Eigen::Matrix3Xd band(int n, double half_fov, const Eigen::Matrix3d& R,
-                      const Eigen::Vector3d& centre, unsigned seed)
+                      const Eigen::Vector3d& center, unsigned seed)
 {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -31,7 +31,7 @@ Eigen::Matrix3Xd band(int n, double half_fov, const Eigen::Matrix3d& R,
     const double z = std::sin(half_fov) * (2.0 * u(rng) - 1.0); // uniform in area
     const double phi = 2.0 * M_PI * u(rng), rho = std::sqrt(1.0 - z * z);
     const double range = 2.0 + 28.0 * u(rng);
-    p.col(i) = centre + R * (range * Eigen::Vector3d(rho * std::cos(phi),
+    p.col(i) = center + R * (range * Eigen::Vector3d(rho * std::cos(phi),
                                                      rho * std::sin(phi), z));
   }
   return p;
@@ -41,7 +41,7 @@ const Eigen::Vector3d kOrigin = Eigen::Vector3d::Zero();
 
 } // namespace
 
-TEST(ProjectionCentre, CoverageOfKnownRegions)
+TEST(ProjectionCenter, CoverageOfKnownRegions)
 {
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
   // The whole sphere, the band |elevation| <= 30 deg (area 1/2) and <= 15 deg (0.26):
@@ -68,7 +68,7 @@ TEST(ProjectionCentre, CoverageOfKnownRegions)
   EXPECT_EQ(polarFraction(Eigen::Matrix3Xd::Zero(3, 10), kOrigin), 0.0);
 }
 
-TEST(ProjectionCentre, PolarFractionIsRotationInvariant)
+TEST(ProjectionCenter, PolarFractionIsRotationInvariant)
 {
   // A LiDAR band (+-20 deg) under any rotation: nothing near its poles. The whole
   // sphere: 1 - cos(45 deg) ~ 0.29 of uniform directions lie within 45 deg of a pole.
@@ -79,15 +79,15 @@ TEST(ProjectionCentre, PolarFractionIsRotationInvariant)
                              return std::normal_distribution<double>()(rng);
                            }).normalized())
             .toRotationMatrix();
-    const Eigen::Vector3d centre(3.0 * k, -1.0, 0.5 * k);
-    const Eigen::Matrix3Xd lidar = band(50000, 20 * M_PI / 180, R, centre, 10 + k);
-    EXPECT_EQ(polarFraction(lidar, centre), 0.0) << k;
-    EXPECT_TRUE(looksSensorCentred(lidar, centre)) << k;
-    // Seen from 40 m beside its sensor it is no longer centred on the viewpoint.
-    EXPECT_FALSE(looksSensorCentred(lidar, centre + R * Eigen::Vector3d(40, 0, 0)))
+    const Eigen::Vector3d center(3.0 * k, -1.0, 0.5 * k);
+    const Eigen::Matrix3Xd lidar = band(50000, 20 * M_PI / 180, R, center, 10 + k);
+    EXPECT_EQ(polarFraction(lidar, center), 0.0) << k;
+    EXPECT_TRUE(looksSensorCentered(lidar, center)) << k;
+    // Seen from 40 m beside its sensor it is no longer centered on the viewpoint.
+    EXPECT_FALSE(looksSensorCentered(lidar, center + R * Eigen::Vector3d(40, 0, 0)))
         << k;
-    const Eigen::Matrix3Xd sphere = band(50000, M_PI / 2, R, centre, 20 + k);
-    EXPECT_NEAR(polarFraction(sphere, centre), 1.0 - std::sqrt(0.5), 0.03) << k;
-    EXPECT_FALSE(looksSensorCentred(sphere, centre)) << k;
+    const Eigen::Matrix3Xd sphere = band(50000, M_PI / 2, R, center, 20 + k);
+    EXPECT_NEAR(polarFraction(sphere, center), 1.0 - std::sqrt(0.5), 0.03) << k;
+    EXPECT_FALSE(looksSensorCentered(sphere, center)) << k;
   }
 }

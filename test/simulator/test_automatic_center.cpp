@@ -32,7 +32,7 @@ double rreDeg(const Eigen::Matrix4d& A, const Eigen::Matrix4d& B)
 
 } // namespace
 
-TEST(AutomaticCentre, SimulatedScanPairUsesTheSensorOriginAndTheCache)
+TEST(AutomaticCenter, SimulatedScanPairUsesTheSensorOriginAndTheCache)
 {
   const pcl::phaser::ScanPair pair = pcl::phaser::makeDemoPair(2);
   const auto source = pcl::make_shared<Cloud>(pair.source);
@@ -81,9 +81,9 @@ TEST(AutomaticCentre, SimulatedScanPairUsesTheSensorOriginAndTheCache)
   EXPECT_LT(displacement / static_cast<double>(far->size()), 0.1);
 }
 
-TEST(AutomaticCentre, BadInputFailsCleanly)
+TEST(AutomaticCenter, BadInputFailsCleanly)
 {
-  // Empty, a single point at the centre, all NaN: as the source and as the target, on
+  // Empty, a single point at the center, all NaN: as the source and as the target, on
   // fresh objects (PCL's setInputSource/Target refuse an empty cloud and keep the old
   // one, so each case starts clean).
   const pcl::phaser::ScanPair pair = pcl::phaser::makeDemoPair(1);

@@ -11,7 +11,7 @@
 #include "protocol.h"
 #include "real_data_support.h"
 
-#include <pcl_phaser/core/projection_centre.h>
+#include <pcl_phaser/core/projection_center.h>
 #include <pcl_phaser/phaser_registration.h>
 
 #include <pcl/common/transforms.h>
@@ -51,7 +51,7 @@ const char* name(Center c)
 
 /** The scan seen again from \a poses random poses (the end-to-end protocol), registered
  * in Automatic mode; returns the successes. The moved source's sensor sits up to 2 m
- * from its origin, so either centre may be chosen; both must work. */
+ * from its origin, so either center may be chosen; both must work. */
 int automaticRandomPoses(const std::string& relative, int poses)
 {
   const CloudXYZ::Ptr scan = loadFinite(relative);
@@ -95,7 +95,7 @@ Eigen::Matrix4d alignAutomatic(const CloudXYZ::Ptr& source, const CloudXYZ::Ptr&
 
 } // namespace
 
-TEST(AutomaticCentre, SeparatesSensorFramesFromObjectsCamerasAndRooms)
+TEST(AutomaticCenter, SeparatesSensorFramesFromObjectsCamerasAndRooms)
 {
   // Coverage: the threshold 0.2 lies between the lowest LiDAR scan (cloud049, 0.26) and
   // the highest object or camera frame (bun0, 0.15). Polar fraction: LiDAR scans see
@@ -114,7 +114,7 @@ TEST(AutomaticCentre, SeparatesSensorFramesFromObjectsCamerasAndRooms)
     std::printf("  %-45s coverage %.3f polar %.4f\n", lidar, c, polar);
     EXPECT_GE(c, pcl_phaser::kSensorFrameCoverage + 0.05) << lidar;
     EXPECT_LE(polar, pcl_phaser::kSensorFramePolarFraction / 5) << lidar;
-    EXPECT_TRUE(pcl_phaser::looksSensorCentred(p, origin)) << lidar;
+    EXPECT_TRUE(pcl_phaser::looksSensorCentered(p, origin)) << lidar;
   }
   for (const char* object :
        {"pcl/bun0.pcd", "pcl/bun4.pcd", "object/stanford_bunny/bun000.ply",
@@ -131,7 +131,7 @@ TEST(AutomaticCentre, SeparatesSensorFramesFromObjectsCamerasAndRooms)
   }
 }
 
-TEST(AutomaticCentre, LidarScansUnderRandomPoses)
+TEST(AutomaticCenter, LidarScansUnderRandomPoses)
 {
   PCL_PHASER_REQUIRE_DATA("lidar/hdl32_fastgicp/251370668.pcd");
   PCL_PHASER_REQUIRE_DATA("lidar/kitti_raw_hdl64/0000000000.bin");
@@ -139,7 +139,7 @@ TEST(AutomaticCentre, LidarScansUnderRandomPoses)
   EXPECT_EQ(automaticRandomPoses("lidar/kitti_raw_hdl64/0000000000.bin", 4), 4);
 }
 
-TEST(AutomaticCentre, KinectFrameUsesTheCentroid)
+TEST(AutomaticCenter, KinectFrameUsesTheCentroid)
 {
   // A 57 x 43 deg camera frame: its centroid (doc/benchmarks.md section 8: about the
   // sensor origin range-only registration succeeds 3/5, about the centroid 5/5).
@@ -147,7 +147,7 @@ TEST(AutomaticCentre, KinectFrameUsesTheCentroid)
   EXPECT_EQ(automaticRandomPoses("pcl/frame_20121214T142255.814212.pcd", 3), 3);
 }
 
-TEST(AutomaticCentre, SacIaPatternUsesTheCentroid)
+TEST(AutomaticCenter, SacIaPatternUsesTheCentroid)
 {
   // PCL's test_sac_ia set-up: bun0 moved by 100 m and yawed by 90 deg, aligned to bun4.
   // The target surrounds its origin a little (0.13), the moved source not at all.
@@ -176,7 +176,7 @@ TEST(AutomaticCentre, SacIaPatternUsesTheCentroid)
       centroid.getFinalTransformation(), 1e-6f));
 }
 
-TEST(AutomaticCentre, OfficeKeypointsUseTheCentroid)
+TEST(AutomaticCenter, OfficeKeypointsUseTheCentroid)
 {
   // Keypoints of two office scans: they surround their origins (coverage 0.39-0.45) but
   // also see floor and ceiling. About the origins the registration does not converge;

@@ -5,7 +5,7 @@
 #include "so3_test_support.h"
 
 #include <pcl_phaser/core/error.h>
-#include <pcl_phaser/core/peak_neighbourhood.h>
+#include <pcl_phaser/core/peak_neighborhood.h>
 #include <pcl_phaser/core/so3_correlation.h>
 
 #include <Eigen/Geometry>
@@ -16,7 +16,7 @@
 
 using namespace pcl_phaser;
 
-TEST(PeakNeighbourhood, RotationBlockMatchesExactEvaluationAtThePoles)
+TEST(PeakNeighborhood, RotationBlockMatchesExactEvaluationAtThePoles)
 {
   std::mt19937 rng(12);
   const int B = 8, N = 2 * B;
@@ -28,7 +28,7 @@ TEST(PeakNeighbourhood, RotationBlockMatchesExactEvaluationAtThePoles)
     scale = std::max(scale, std::abs(C(j, 0, 0)));
   for (const So3GridIndex& peak :
        {So3GridIndex{0, 3, 5}, So3GridIndex{N - 1, 0, N - 1}, So3GridIndex{7, 9, 2}}) {
-    const std::vector<RotationSample> block = rotationNeighbourhood(C, peak, 2);
+    const std::vector<RotationSample> block = rotationNeighborhood(C, peak, 2);
     ASSERT_EQ(block.size(), 125u);
     std::vector<Eigen::Matrix3d> rotations;
     for (const RotationSample& s : block)
@@ -39,7 +39,7 @@ TEST(PeakNeighbourhood, RotationBlockMatchesExactEvaluationAtThePoles)
   }
 }
 
-TEST(PeakNeighbourhood, DistinctPeaksOfASymmetricScene)
+TEST(PeakNeighborhood, DistinctPeaksOfASymmetricScene)
 {
   // Lobes invariant under a half turn about z: C has two equal maxima, R and R Rz(pi).
   const int B = 16;
@@ -92,14 +92,14 @@ TEST(PeakNeighbourhood, DistinctPeaksOfASymmetricScene)
   }
 }
 
-TEST(PeakNeighbourhood, TranslationGaussianRecoversABlob)
+TEST(PeakNeighborhood, TranslationGaussianRecoversABlob)
 {
   SpatialVolume v;
   v.grid.dims = Eigen::Vector3i(16, 20, 12);
   v.grid.voxel_size = 0.5;
   v.grid.origin = Eigen::Vector3d(0.1, -0.2, 0.0);
   v.values.assign(v.grid.size(), 0.0);
-  const Eigen::Vector3d mu(1.2, -1.6, 0.6); // metres, relative to the origin's lag 0
+  const Eigen::Vector3d mu(1.2, -1.6, 0.6); // meters, relative to the origin's lag 0
   Eigen::Matrix3d sigma;
   sigma << 0.30, 0.05, 0.00, 0.05, 0.20, -0.03, 0.00, -0.03, 0.15;
   const Eigen::Matrix3d info = sigma.inverse();

@@ -20,19 +20,19 @@ struct RotationSample {
   double value;
 };
 
-/** \brief The (2r+1)^3 block of grid samples around \a peak, a true 3-D neighbourhood:
+/** \brief The (2r+1)^3 block of grid samples around \a peak, a true 3-D neighborhood:
  *  alpha and gamma wrap modulo N, and a beta index beyond the poles reflects, because
  *  Rz(a) Ry(-b) Rz(c) = Rz(a + pi) Ry(b) Rz(c - pi): index j < 0 reads row -1 - j and
  *  j >= N reads row 2N - 1 - j, both at (a + Bo, c - Bo). Near the poles several
  *  samples may be (almost) the same rotation; they are kept, each with its value.
  *  \param[in] grid the correlation on the Euler grid
- *  \param[in] peak centre of the block
+ *  \param[in] peak center of the block
  *  \param[in] radius r >= 0 */
-std::vector<RotationSample> rotationNeighbourhood(const So3CorrelationGrid& grid,
-                                                  const So3GridIndex& peak, int radius);
+std::vector<RotationSample> rotationNeighborhood(const So3CorrelationGrid& grid,
+                                                 const So3GridIndex& peak, int radius);
 
 /** \brief Up to \a count grid peaks in decreasing order of C, in the upper half of the
- *  value range, that are local maxima of their 3x3x3 neighbourhood and lie more than \a
+ *  value range, that are local maxima of their 3x3x3 neighborhood and lie more than \a
  * min_separation radians from every peak already taken (ties by lowest flat index:
  * deterministic). \param[in] grid the correlation on the Euler grid \param[in] count
  * how many peaks at most \param[in] min_separation geodesic distance between distinct
@@ -41,7 +41,7 @@ std::vector<RotationSample> rotationNeighbourhood(const So3CorrelationGrid& grid
 std::vector<So3GridIndex> distinctPeaks(const So3CorrelationGrid& grid, int count,
                                         double min_separation, int num_threads = 1);
 
-/** \brief A Gaussian on translations, in metres. */
+/** \brief A Gaussian on translations, in meters. */
 struct TranslationGaussian {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
@@ -49,9 +49,9 @@ struct TranslationGaussian {
 
 /** \brief Weighted Gaussian over the (2r+1)^3 lags around the integer peak of a spatial
  *  correlation (paper eq. 15). Weights are the correlation above the lowest value of
- * the block, normalised to sum 1, so they describe the shape of the peak rather than
+ * the block, normalized to sum 1, so they describe the shape of the peak rather than
  * the size of the window; lags wrap around. The mean is relative to the lag-0 shift of
- * the volume (its origin), in metres, like SpatialCorrelationResult::shift. \param[in]
+ * the volume (its origin), in meters, like SpatialCorrelationResult::shift. \param[in]
  * correlation a volume from correlateSpectra \param[in] peak integer peak index
  *  \param[in] radius r >= 1 */
 TranslationGaussian translationGaussian(const SpatialVolume& correlation,
@@ -80,7 +80,7 @@ CorrelationSidelobes correlationSidelobes(const SpatialVolume& correlation,
 
 /** \brief Covariance (m^2) of the sub-voxel peak of findSpatialPeak (kGaussian: on each
  * axis the vertex o of the parabola through the logs of the peak and its two
- * neighbours, or through the raw values where a log is not usable) when the values
+ * neighbors, or through the raw values where a log is not usable) when the values
  * carry noise whose first and second differences have the variances in \a noise.
  *
  * First-order error propagation. With fitted values (a, b, d) and curvature
@@ -111,7 +111,7 @@ Eigen::Matrix3d interpolationModelCovariance(const SpatialVolume& correlation,
                                              const Eigen::Vector3i& peak);
 
 /** \brief Covariance (m^2) of the translation found at the peak of \a correlation =
- *  f * g. The target f at the estimate is modelled as a scaled source plus a mismatch
+ *  f * g. The target f at the estimate is modeled as a scaled source plus a mismatch
  *  m, f = alpha g + m; least squares gives 1 - rho^2 = |m|^2 / |f|^2 with rho =
  *  c_peak / (|f| |g|). The mismatch perturbs the correlation by m * g, which fluctuates
  *  like the correlation of unrelated signals, i.e. like the sidelobes of c, scaled by

@@ -38,7 +38,7 @@ constexpr double kSensorFramePolarFraction = 0.005;
 /** \brief True when \a points look like a spinning-LiDAR scan seen from its sensor at
  *  \a viewpoint: they surround it (kSensorFrameCoverage) in a band that leaves the
  *  poles empty (kSensorFramePolarFraction). */
-bool looksSensorCentred(const Eigen::Matrix3Xd& points,
-                        const Eigen::Vector3d& viewpoint);
+bool looksSensorCentered(const Eigen::Matrix3Xd& points,
+                         const Eigen::Vector3d& viewpoint);
 
 } // namespace pcl_phaser

@@ -3,7 +3,7 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  */
 #include <pcl_phaser/core/error.h>
-#include <pcl_phaser/core/peak_neighbourhood.h>
+#include <pcl_phaser/core/peak_neighborhood.h>
 #include <pcl_phaser/core/so3_grid.h>
 
 #include <algorithm>
@@ -20,7 +20,7 @@ inline int wrap(int i, int n)
   return ((i % n) + n) % n;
 }
 
-/** Grid value at a possibly out-of-range index (see rotationNeighbourhood). */
+/** Grid value at a possibly out-of-range index (see rotationNeighborhood). */
 double valueAt(const So3CorrelationGrid& grid, int j, int a, int c)
 {
   const int N = grid.size(), Bo = grid.outputBandwidth();
@@ -34,11 +34,11 @@ double valueAt(const So3CorrelationGrid& grid, int j, int a, int c)
 
 } // namespace
 
-std::vector<RotationSample> rotationNeighbourhood(const So3CorrelationGrid& grid,
-                                                  const So3GridIndex& peak, int radius)
+std::vector<RotationSample> rotationNeighborhood(const So3CorrelationGrid& grid,
+                                                 const So3GridIndex& peak, int radius)
 {
   if (radius < 0)
-    throw InvalidArgument("rotationNeighbourhood: radius must be >= 0");
+    throw InvalidArgument("rotationNeighborhood: radius must be >= 0");
   const double Bo = grid.outputBandwidth();
   std::vector<RotationSample> out;
   for (int dj = -radius; dj <= radius; ++dj)
@@ -62,7 +62,7 @@ std::vector<So3GridIndex> distinctPeaks(const So3CorrelationGrid& grid, int coun
     std::size_t flat;
   };
   // Only samples in the upper half of the value range can be peaks worth reporting; the
-  // 26-neighbour test then runs on few of them. Min and max are exact in any order, and
+  // 26-neighbor test then runs on few of them. Min and max are exact in any order, and
   // the maxima are gathered per beta row and joined in row order, so the result does
   // not depend on the thread count.
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
@@ -188,7 +188,7 @@ struct RunningVariance {
   double variance() const { return count > 1 ? m2 / static_cast<double>(count) : 0.0; }
 };
 
-/** Neighbours below this fraction of the peak make findSpatialPeak fit the raw values
+/** Neighbors below this fraction of the peak make findSpatialPeak fit the raw values
  *  (its kLogFloor). */
 constexpr double kLogFloor = 1e-6;
 
@@ -214,7 +214,7 @@ CorrelationSidelobes correlationSidelobes(const SpatialVolume& correlation,
             std::abs(dz) <= kSidelobeInnerRadius)
           continue;
         const Eigen::Vector3i p = peak + Eigen::Vector3i(dx, dy, dz);
-        const double centre = volumeAt(correlation, p);
+        const double center = volumeAt(correlation, p);
         for (int a = 0; a < 3; ++a) {
           if (n[a] < 3)
             continue;
@@ -223,7 +223,7 @@ CorrelationSidelobes correlationSidelobes(const SpatialVolume& correlation,
           ++q[a];
           const double vm = volumeAt(correlation, m), vq = volumeAt(correlation, q);
           first[a].add(vq - vm);
-          second[a].add(vm - 2.0 * centre + vq);
+          second[a].add(vm - 2.0 * center + vq);
         }
       }
   CorrelationSidelobes out;
