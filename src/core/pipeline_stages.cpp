@@ -223,7 +223,10 @@ Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_
   }
   e.chosen_hypothesis = static_cast<int>(best);
   e.passes = 1;
-  Pose pose{e.hypotheses[best].rotation, e.hypotheses[best].translation, v[best]};
+  Pose pose;
+  pose.R = e.hypotheses[best].rotation;
+  pose.t = e.hypotheses[best].translation;
+  pose.v = v[best];
   pose.verifiable = verifiable;
   return pose;
 }

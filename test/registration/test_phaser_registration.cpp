@@ -392,9 +392,10 @@ TEST(PhaserRegistration, ThreadCountDoesNotChangeTheResult)
   Eigen::Matrix4f results[3];
   for (int k = 0; k < 3; ++k) {
     pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
-    if (k == 0)
+    if (k == 0) {
       EXPECT_EQ(phaser.getNumberOfThreads(), 0u); // automatic by default
-    phaser.setNumberOfThreads(k);                 // 0: one per hardware thread
+    }
+    phaser.setNumberOfThreads(k); // 0: one per hardware thread
     phaser.setInputSource(source);
     phaser.setInputTarget(target);
     CloudXYZ out;

@@ -87,7 +87,7 @@ struct PhaserParameters {
   double min_inlier_fraction = 0.2;
   /** \brief Verification about sensor origins: largest share of samples in space the
    *  target saw through, in [0, 1]. */
-  double max_free_space_violation = 0.01;
+  double max_free_space_violation = 0.02;
   /** \brief Verification: least PoseVerification::constraint (how well the matched
    *  samples pin the translation down in every direction), in [0, 1/3]. */
   double min_constraint = 0.04;
