@@ -47,7 +47,7 @@ using Cloud = pcl::PointCloud<PointT>;
 struct Row {
   double total = 0.0;
   double first = 0.0; ///< the first align of the configuration (the warm-up)
-  pcl_phaser::PhaserResult estimate;
+  pcl::phaser::PhaserResult estimate;
 };
 
 double msSince(std::chrono::steady_clock::time_point start)
@@ -92,7 +92,7 @@ Row measure(const Cloud::Ptr& source, const Cloud::Ptr& target, int threads,
   std::vector<Row> rows;
   pcl::PhaserRegistration<PointT, PointT> phaser;
   phaser.setUseIntensity(!range_only);
-  pcl_phaser::PhaserParameters params = phaser.getParameters();
+  pcl::phaser::PhaserParameters params = phaser.getParameters();
   params.normalized_refinement = normalized;
   phaser.setParameters(params);
   phaser.setBandwidth(bandwidth);
@@ -166,7 +166,7 @@ int main(int argc, char** argv)
   std::string name;
   if (!loadPair(argc, argv, source, target, name))
     return 2;
-  const double unit = pcl_phaser::bench::fftYardstickMs();
+  const double unit = pcl::phaser::bench::fftYardstickMs();
   std::optional<BusyCore> spinner;
   if (busy)
     spinner.emplace();
@@ -191,7 +191,7 @@ int main(int argc, char** argv)
     for (bool cached : {false, true}) {
       const Row r = measure(source, target, threads, cached, reps, bandwidth,
                             range_only, normalized);
-      const pcl_phaser::PhaserResult& e = r.estimate;
+      const pcl::phaser::PhaserResult& e = r.estimate;
       const double staged = e.target_ms + e.sampling_ms + e.sht_ms + e.so3_ms +
                             e.refinement_ms + e.translation_ms + e.orientation_ms +
                             e.verification_ms;

@@ -104,11 +104,11 @@ int main(int argc, char** argv)
   for (int seed = 1; seed <= seeds; ++seed) {
     pcl::phaser::ScanPair pair;
     if (scan) { // the scan seen again from a random pose, PSNR 50 dB
-      const Eigen::Matrix4d T = pcl_phaser::bench::randomPose(rng, 2.0);
+      const Eigen::Matrix4d T = pcl::phaser::bench::randomPose(rng, 2.0);
       pcl::PointCloud<pcl::PointXYZI> perturbed = *scan;
-      pcl_phaser::bench::Condition noise;
-      pcl_phaser::bench::parseCondition("noise:50", noise);
-      pcl_phaser::bench::applyCondition(noise, perturbed, rng);
+      pcl::phaser::bench::Condition noise;
+      pcl::phaser::bench::parseCondition("noise:50", noise);
+      pcl::phaser::bench::applyCondition(noise, perturbed, rng);
       pcl::transformPointCloud(perturbed, pair.source, Eigen::Matrix4d(T.inverse()));
       pair.target = *scan;
       pair.T_target_source = T;

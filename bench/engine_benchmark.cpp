@@ -26,7 +26,7 @@
 #include <unistd.h>
 #include <vector>
 
-using namespace pcl_phaser;
+using namespace pcl::phaser;
 
 namespace {
 

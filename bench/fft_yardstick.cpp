@@ -11,7 +11,7 @@
 #include <cmath>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace bench {
 
 double fftYardstickMs()
@@ -40,4 +40,4 @@ double fftYardstickMs()
 }
 
 } // namespace bench
-} // namespace pcl_phaser
+} // namespace pcl::phaser

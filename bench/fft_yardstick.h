@@ -4,7 +4,7 @@
  */
 #pragma once
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace bench {
 
 /** \brief The timing yardstick of doc/benchmarks.md: milliseconds of one 128^3
@@ -15,4 +15,4 @@ namespace bench {
 double fftYardstickMs();
 
 } // namespace bench
-} // namespace pcl_phaser
+} // namespace pcl::phaser

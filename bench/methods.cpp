@@ -9,7 +9,7 @@
 #include <pcl/filters/filter.h>
 #include <pcl/filters/voxel_grid.h>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace bench {
 
 const std::vector<Method>& allMethods()
@@ -74,4 +74,4 @@ Cloud::Ptr loadFiniteScan(const std::string& path)
 }
 
 } // namespace bench
-} // namespace pcl_phaser
+} // namespace pcl::phaser

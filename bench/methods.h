@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace bench {
 
 /** \brief What a method may be tuned with; scale-dependent radii derive from voxel. */
@@ -96,4 +96,4 @@ Cloud::Ptr loadFiniteScan(const std::string& path);
 double elapsedMs(std::chrono::steady_clock::time_point start);
 
 } // namespace bench
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -15,7 +15,7 @@
 
 #include <cstdlib>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace bench {
 
 namespace {
@@ -114,4 +114,4 @@ MethodResult runPrerejective(const Cloud::ConstPtr& source,
 }
 
 } // namespace bench
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -12,7 +12,7 @@
 
 #include <cstdlib>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace bench {
 
 MethodResult runFpcs(const Cloud::ConstPtr& source, const Cloud::ConstPtr& target,
@@ -52,4 +52,4 @@ MethodResult runFpcs(const Cloud::ConstPtr& source, const Cloud::ConstPtr& targe
 }
 
 } // namespace bench
-} // namespace pcl_phaser
+} // namespace pcl::phaser

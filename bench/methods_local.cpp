@@ -11,7 +11,7 @@
 #include <pcl/registration/icp.h>
 #include <pcl/registration/ndt.h>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace bench {
 
 namespace {
@@ -89,4 +89,4 @@ void refineWithIcp(const Cloud::ConstPtr& source, const Cloud::ConstPtr& target,
 }
 
 } // namespace bench
-} // namespace pcl_phaser
+} // namespace pcl::phaser

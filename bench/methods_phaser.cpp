@@ -8,7 +8,7 @@
 
 #include <pcl/common/io.h>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace bench {
 
 namespace {
@@ -22,11 +22,11 @@ MethodResult align(const typename pcl::PointCloud<PointP>::ConstPtr& source,
   pcl::PhaserRegistration<PointP, PointP> phaser;
   phaser.setBandwidth(settings.bandwidth);
   phaser.setNumberOfThreads(settings.threads);
-  pcl_phaser::PhaserParameters params = phaser.getParameters();
+  pcl::phaser::PhaserParameters params = phaser.getParameters();
   params.normalized_refinement = settings.normalized_refinement;
   params.projection_center = settings.centroid
-                                 ? pcl_phaser::ProjectionCenter::Centroid
-                                 : pcl_phaser::ProjectionCenter::SensorOrigin;
+                                 ? pcl::phaser::ProjectionCenter::Centroid
+                                 : pcl::phaser::ProjectionCenter::SensorOrigin;
   phaser.setParameters(params);
   phaser.setInputSource(source);
   phaser.setInputTarget(target);
@@ -61,4 +61,4 @@ MethodResult runPhaser(const Cloud::ConstPtr& source, const Cloud::ConstPtr& tar
 }
 
 } // namespace bench
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -30,7 +30,7 @@
 
 namespace {
 
-using namespace pcl_phaser::bench;
+using namespace pcl::phaser::bench;
 namespace console = pcl::console;
 
 /** A scan of ../shared/data used under random poses. */

@@ -11,7 +11,7 @@
 #include <cstdlib>
 #include <limits>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace bench {
 
 double rreDeg(const Eigen::Matrix4d& estimate, const Eigen::Matrix4d& truth)
@@ -179,4 +179,4 @@ double quantile(std::vector<double> values, double q)
 }
 
 } // namespace bench
-} // namespace pcl_phaser
+} // namespace pcl::phaser

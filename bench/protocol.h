@@ -16,7 +16,7 @@
 #include <random>
 #include <string>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace bench {
 
 using PointT = pcl::PointXYZI;
@@ -69,4 +69,4 @@ double median(std::vector<double> values);
 double quantile(std::vector<double> values, double q);
 
 } // namespace bench
-} // namespace pcl_phaser
+} // namespace pcl::phaser

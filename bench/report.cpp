@@ -13,7 +13,7 @@
 #include <fstream>
 #include <map>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace bench {
 
 namespace {
@@ -257,4 +257,4 @@ std::string formatValue(const char* fmt, double value)
 }
 
 } // namespace bench
-} // namespace pcl_phaser
+} // namespace pcl::phaser

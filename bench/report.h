@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace bench {
 
 /** \brief One registration of one method on one pair. */
@@ -61,4 +61,4 @@ std::vector<std::string> writePlots(const std::string& dir,
 std::string formatValue(const char* fmt, double value);
 
 } // namespace bench
-} // namespace pcl_phaser
+} // namespace pcl::phaser

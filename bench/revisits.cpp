@@ -33,7 +33,7 @@
 #include <string>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace bench {
 
 namespace {
@@ -442,4 +442,4 @@ int runRevisitsStudy(int argc, char** argv)
 }
 
 } // namespace bench
-} // namespace pcl_phaser
+} // namespace pcl::phaser

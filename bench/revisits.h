@@ -31,7 +31,7 @@
 #include <utility>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace bench {
 
 /** \brief Whether the command line asks for "-study revisits". */
@@ -245,4 +245,4 @@ inline std::vector<RevisitPair> derivePairs(const std::vector<ScanPose>& poses,
 }
 
 } // namespace bench
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -36,9 +36,9 @@
 #include <unistd.h>
 
 using namespace pcl::console;
-namespace align = pcl::phaser::align;
+namespace align = pcl::phaser::align_tool;
 namespace json = pcl::phaser::json;
-using namespace pcl::phaser::align;
+using namespace pcl::phaser::align_tool;
 
 namespace {
 
@@ -46,7 +46,7 @@ const double kPi = 3.14159265358979323846;
 
 struct Result {
   Stage global, icp;
-  pcl_phaser::PhaserResult estimate;
+  pcl::phaser::PhaserResult estimate;
   std::size_t source_points = 0, target_points = 0;
   pcl::PointCloud<pcl::PointXYZRGB>::Ptr overlay;
   /** \brief ICP's transform when it ran and converged, else PHASER's. */
@@ -75,7 +75,7 @@ void printHelp(int, char** argv)
       "    --threads T         = worker threads, 0..64 (default: %u, one per hardware "
       "thread; the demo: %d)\n",
       d.getBandwidth(), d.getParameters().spatial_grid_size, d.getParameters().passes,
-      static_cast<unsigned>(pcl_phaser::resolveThreadCount(0)), default_demo_threads);
+      static_cast<unsigned>(pcl::phaser::resolveThreadCount(0)), default_demo_threads);
   print_info(
       "    -icp                = refine with point-to-plane ICP "
       "(pcl::IterativeClosestPointWithNormals, normals\n"
@@ -161,7 +161,7 @@ int compute(const pcl::PCLPointCloud2& source_blob,
   res.target_points = target->size();
 
   pcl::PhaserRegistration<PointT, PointT> phaser;
-  pcl_phaser::PhaserParameters params = phaser.getParameters();
+  pcl::phaser::PhaserParameters params = phaser.getParameters();
   if (opt.bandwidth)
     params.bandwidth = opt.bandwidth;
   if (opt.grid)
@@ -171,7 +171,7 @@ int compute(const pcl::PCLPointCloud2& source_blob,
   if (opt.threads || opt.demo)
     params.num_threads =
         static_cast<int>(opt.threads ? opt.threads : default_demo_threads);
-  using Center = pcl_phaser::ProjectionCenter;
+  using Center = pcl::phaser::ProjectionCenter;
   params.projection_center = opt.center == "centroid" ? Center::Centroid
                              : opt.center == "auto"   ? Center::Automatic
                                                       : Center::SensorOrigin;
@@ -185,7 +185,7 @@ int compute(const pcl::PCLPointCloud2& source_blob,
              pcl::traits::has_intensity_v<PointT> ? "PointXYZI" : "PointXYZ",
              params.bandwidth, params.spatial_grid_size, params.passes,
              static_cast<unsigned>(
-                 pcl_phaser::resolveThreadCount(int(phaser.getNumberOfThreads()))),
+                 pcl::phaser::resolveThreadCount(int(phaser.getNumberOfThreads()))),
              opt.center.c_str());
   TicToc tt;
   tt.tic();
@@ -247,7 +247,7 @@ void printStage(const char* title, const Stage& s)
 
 void printReport(const Result& res)
 {
-  const pcl_phaser::PhaserResult& e = res.estimate;
+  const pcl::phaser::PhaserResult& e = res.estimate;
   printStage("PHASER", res.global);
   print_info("    rotation score %.4f, translation score %.4f, passes %d\n"
              "    verification: inliers %.3f, free-space violations %.3f, constraint "
@@ -268,7 +268,7 @@ std::string toJson(const Result& res, const Options& opt, int code, double total
 {
   json::Object o;
   if (res.global.ran) {
-    const pcl_phaser::PhaserResult& e = res.estimate;
+    const pcl::phaser::PhaserResult& e = res.estimate;
     o = json::stage(res.global);
     json::Object stages;
     stages.add("target", json::number(e.target_ms))

@@ -100,7 +100,7 @@ private:
 
 /** \brief A stage as {"transformation", "converged", "time_ms"} plus "rre_deg" and
  * "rte_m" when its errors are known. */
-inline Object stage(const pcl::phaser::align::Stage& s)
+inline Object stage(const pcl::phaser::align_tool::Stage& s)
 {
   Object o;
   o.add("transformation", matrix(s.transform))

@@ -27,7 +27,7 @@
 
 namespace pcl {
 namespace phaser {
-namespace align {
+namespace align_tool {
 
 using namespace pcl::console;
 
@@ -224,6 +224,6 @@ inline int parseOptions(int argc, char** argv, Options& opt)
   return (kOk);
 }
 
-} // namespace align
+} // namespace align_tool
 } // namespace phaser
 } // namespace pcl

@@ -31,7 +31,7 @@
 
 namespace pcl {
 namespace phaser {
-namespace align {
+namespace align_tool {
 
 /** \brief Whether a field exists and is float32 or float64 (count 1 or more). */
 inline bool isFloatField(const pcl::PCLPointCloud2& blob, int index)
@@ -249,6 +249,6 @@ void refine(const typename pcl::PointCloud<PointT>::Ptr& full_source,
   s.ran = true;
 }
 
-} // namespace align
+} // namespace align_tool
 } // namespace phaser
 } // namespace pcl

@@ -22,7 +22,7 @@ namespace pcl {
  * two clouds, projected on the sphere about a center, on SO(3), beside the correlation
  * of their surface-orientation histograms; the translation from a 3-D FFT correlation
  * of the voxelized clouds. Every hypothesis is verified geometrically and the best one
- * wins; hasConverged() means the final pose verified (pcl_phaser::PhaserResult::
+ * wins; hasConverged() means the final pose verified (pcl::phaser::PhaserResult::
  * converged). No normals, features or correspondences are needed, so it replaces
  * pcl::SampleConsensusInitialAlignment as the global initializer ahead of
  * pcl::IterativeClosestPoint:
@@ -47,8 +47,8 @@ namespace pcl {
  *  transformed input, with normals rotated for point types that carry them. What
  *  depends only on the target (its spectra) is cached until setInputTarget(), or until
  *  a parameter it depends on changes. Every setting is a field of
- *  pcl_phaser::PhaserParameters (setParameters()); everything an align() measured is in
- *  getResult().
+ *  pcl::phaser::PhaserParameters (setParameters()); everything an align() measured is
+ * in getResult().
  *
  *  Reference: L. Bernreiter, L. Ott, J. Nieto, R. Siegwart, C. Cadena, "PHASER: a
  * Robust and Correspondence-free Global Pointcloud Registration", IEEE Robotics and
@@ -84,9 +84,9 @@ public:
   using Base::tree_;
 
   /** \brief Where the clouds are projected on the sphere
-   * (pcl_phaser::ProjectionCenter).
+   * (pcl::phaser::ProjectionCenter).
    */
-  using ProjectionCenter = pcl_phaser::ProjectionCenter;
+  using ProjectionCenter = pcl::phaser::ProjectionCenter;
 
   PhaserRegistration() { reg_name_ = "PhaserRegistration"; }
   ~PhaserRegistration() override = default;
@@ -102,16 +102,16 @@ public:
   void setInputTarget(const PointCloudTargetConstPtr& cloud) override;
 
   /** \brief Set every setting at once; each field's meaning, range and default are
-   *  documented in pcl_phaser::PhaserParameters. Ranges are checked at align().
+   *  documented in pcl::phaser::PhaserParameters. Ranges are checked at align().
    *  \param[in] params the settings */
-  void setParameters(const pcl_phaser::PhaserParameters& params)
+  void setParameters(const pcl::phaser::PhaserParameters& params)
   {
     if (params.channels != params_.channels)
       target_model_.reset(); // other channels: extract the target again
     params_ = params;
   }
   /** \brief The settings in use. */
-  const pcl_phaser::PhaserParameters& getParameters() const { return params_; }
+  const pcl::phaser::PhaserParameters& getParameters() const { return params_; }
 
   /** \brief Set the spherical bandwidth B (PhaserParameters::bandwidth, 1..256, default
    *  64). \param[in] bandwidth the bandwidth */
@@ -166,14 +166,14 @@ public:
   /** \brief Everything the last align() found: the transformation, whether it
    *  converged, the center used, scores, hypotheses (in the caller's frames),
    *  verification figures, the translation covariance and the time of each stage. */
-  const pcl_phaser::PhaserResult& getResult() const { return result_; }
+  const pcl::phaser::PhaserResult& getResult() const { return result_; }
 
   /** \brief Bingham distribution of the rotation of the last align()
-   *  (pcl_phaser::rotationUncertainty); computed on first call. */
-  const pcl_phaser::BinghamDistribution& getRotationUncertainty() const;
+   *  (pcl::phaser::rotationUncertainty); computed on first call. */
+  const pcl::phaser::BinghamDistribution& getRotationUncertainty() const;
 
   /** \brief 6x6 covariance of the pose error of the last align(), ordered (rotation
-   *  vector [rad], translation [m]) (pcl_phaser::poseCovariance); zero unless
+   *  vector [rad], translation [m]) (pcl::phaser::poseCovariance); zero unless
    *  hasConverged(). */
   Eigen::Matrix<double, 6, 6> getCovariance() const;
 
@@ -194,17 +194,17 @@ protected:
 private:
   void setChannel(phaser::Channel channel, bool use)
   {
-    pcl_phaser::PhaserParameters params = params_;
+    pcl::phaser::PhaserParameters params = params_;
     params.channels = use ? (params.channels | channel) : (params.channels & ~channel);
     setParameters(params);
   }
 
-  pcl_phaser::PhaserParameters params_;
+  pcl::phaser::PhaserParameters params_;
   /** \brief The target as the engine keeps it (with its cached spectra); null until the
    *  next align() after setInputTarget() or a change of channels. */
-  std::shared_ptr<const pcl_phaser::Target> target_model_;
-  pcl_phaser::PhaserResult result_;
-  mutable std::shared_ptr<pcl_phaser::BinghamDistribution> rotation_uncertainty_;
+  std::shared_ptr<const pcl::phaser::Target> target_model_;
+  pcl::phaser::PhaserResult result_;
+  mutable std::shared_ptr<pcl::phaser::BinghamDistribution> rotation_uncertainty_;
 
 public:
   PCL_MAKE_ALIGNED_OPERATOR_NEW

@@ -13,7 +13,7 @@
 #include <mutex>
 #include <new>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** What a Target derives from its points: whether it looks like a LiDAR scan in its
  *  sensor frame, and the model of the last projection center and parameters. */
@@ -266,4 +266,4 @@ Eigen::Matrix<double, 6, 6> poseCovariance(const PhaserResult& result,
   return cov;
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

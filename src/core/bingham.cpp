@@ -21,7 +21,7 @@
 #include <numeric>
 #include <string>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 namespace {
 
@@ -454,4 +454,4 @@ BinghamDistribution fitBingham(const std::vector<Eigen::Vector4d>& quaternions,
   return makeBingham(eig.eigenvectors(), binghamMaximumLikelihood(omega));
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

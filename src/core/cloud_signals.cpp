@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <chrono>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 namespace {
 
@@ -99,4 +99,4 @@ SpatialSpectrum cloudSpatialSpectrum(const SpatialGrid& grid,
   return fuseSpatial(spectra, fusion);
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

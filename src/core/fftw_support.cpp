@@ -4,7 +4,7 @@
  */
 #include "fftw_support.h"
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace detail {
 
 std::mutex& fftwPlannerMutex()
@@ -14,4 +14,4 @@ std::mutex& fftwPlannerMutex()
 }
 
 } // namespace detail
-} // namespace pcl_phaser
+} // namespace pcl::phaser

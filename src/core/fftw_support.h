@@ -11,7 +11,7 @@
 #include <mutex>
 #include <new>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace detail {
 
 /** \brief The one mutex that guards every FFTW planner call in the process (planning is
@@ -74,4 +74,4 @@ private:
 };
 
 } // namespace detail
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -8,7 +8,7 @@
 #include <memory>
 #include <mutex>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace detail {
 
 /** \brief Process-wide cache of immutable objects keyed by their size parameters
@@ -35,4 +35,4 @@ private:
 };
 
 } // namespace detail
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 std::vector<double> normalizedLegendre(int bandwidth, double x)
 {
@@ -55,4 +55,4 @@ std::vector<double> normalizedLegendre(int bandwidth, double x)
   return p;
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

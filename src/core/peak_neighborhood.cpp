@@ -11,7 +11,7 @@
 #include <complex>
 #include <limits>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 namespace {
 
@@ -347,4 +347,4 @@ Eigen::Matrix3d rotationCovariance(const BinghamDistribution& peak, int bandwidt
   return 0.5 * (spread + spread.transpose()) + s * s * Eigen::Matrix3d::Identity();
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

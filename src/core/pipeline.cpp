@@ -13,7 +13,7 @@
 #include <cmath>
 #include <omp.h>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 namespace {
 
@@ -345,4 +345,4 @@ PhaserResult estimateCentered(const TargetModel& target, const Eigen::Matrix3Xd&
 }
 
 } // namespace detail
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -26,7 +26,7 @@
 #include <cmath>
 #include <memory>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** Fewest verification samples (occupied cells of the verification radius) a source
  *  needs for its pose to be verified: fewer cannot tell a pose from another. */
@@ -214,4 +214,4 @@ PhaserResult estimateCentered(const TargetModel& target, const Eigen::Matrix3Xd&
                               const StageParameters& p, const ChannelValues& channels);
 
 } // namespace detail
-} // namespace pcl_phaser
+} // namespace pcl::phaser

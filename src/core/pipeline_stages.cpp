@@ -11,7 +11,7 @@
 #include <exception>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace detail {
 
 namespace {
@@ -341,4 +341,4 @@ void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
 }
 
 } // namespace detail
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -7,7 +7,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 namespace {
 
@@ -82,4 +82,4 @@ RigidPose refinePoseWithin(const PointIndex& target, const VerificationSamples& 
   return refined;
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

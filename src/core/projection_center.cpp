@@ -12,7 +12,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 double viewCoverage(const Eigen::Matrix3Xd& points, const Eigen::Vector3d& viewpoint)
 {
@@ -77,4 +77,4 @@ bool looksSensorCentered(const Eigen::Matrix3Xd& points,
          polarFraction(points, viewpoint) <= kSensorFramePolarFraction;
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 using Complex = std::complex<double>;
 
@@ -468,4 +468,4 @@ std::vector<double> evaluateCorrelation(const SphericalSpectrum& target,
           .front());
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -9,7 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 Eigen::Matrix3d rotationFromEuler(const EulerZYZ& e)
 {
@@ -48,4 +48,4 @@ double rotationDistance(const Eigen::Matrix3d& A, const Eigen::Matrix3d& B)
   return Eigen::AngleAxisd(Eigen::Matrix3d(A.transpose() * B)).angle();
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

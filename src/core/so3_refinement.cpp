@@ -14,7 +14,7 @@
 #include <limits>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 namespace {
 
@@ -143,4 +143,4 @@ refineRotation(const SphericalSpectrum& target, const SphericalSpectrum& source,
   return best;
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

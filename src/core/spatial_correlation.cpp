@@ -18,7 +18,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 namespace detail {
 
@@ -354,4 +354,4 @@ SpatialCorrelationResult correlateSpatial(const SpatialSpectrum& target,
                          num_threads);
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -12,7 +12,7 @@
 #include <mutex>
 #include <stdexcept>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace detail {
 
 namespace {
@@ -122,4 +122,4 @@ void inverseFft3d(const Eigen::Vector3i& dims, std::complex<double>* in, double*
 }
 
 } // namespace detail
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -10,7 +10,7 @@
 
 #include <complex>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace detail {
 
 /** \brief Forward r2c 3-D DFT of the nx x ny x nz row-major array \a in into the
@@ -31,4 +31,4 @@ void inverseFft3d(const Eigen::Vector3i& dims, std::complex<double>* in, double*
                   int num_threads);
 
 } // namespace detail
-} // namespace pcl_phaser
+} // namespace pcl::phaser

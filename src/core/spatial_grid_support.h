@@ -15,7 +15,7 @@
 #include <omp.h>
 #include <string>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace detail {
 
 inline int resolveThreads(int num_threads)
@@ -57,4 +57,4 @@ inline int wrapIndex(int i, int n)
 }
 
 } // namespace detail
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -13,7 +13,7 @@
 #include <cmath>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 using detail::checkVolume;
 using detail::resolveThreads;
@@ -203,4 +203,4 @@ SpatialCorrelationResult findSpatialPeak(const SpatialVolume& correlation,
   return result;
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -14,7 +14,7 @@
 #include <omp.h>
 #include <string>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace {
 
 using Complex = std::complex<double>;
@@ -391,4 +391,4 @@ Eigen::VectorXd normalizeChannel(const Eigen::VectorXd& values, double clamp)
   return out;
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

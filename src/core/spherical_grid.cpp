@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 double ringColatitude(int ring, int bandwidth)
 {
@@ -62,4 +62,4 @@ int cellIndex(const Eigen::Vector3d& p, int bandwidth)
   return j * n + k;
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -14,7 +14,7 @@
 #include <complex>
 #include <cstring>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 using Complex = std::complex<double>;
 
@@ -142,4 +142,4 @@ SphericalHarmonicTransform::inverse(const SphericalSpectrum& F) const
   return std::vector<double>(real.get(), real.get() + static_cast<std::size_t>(n) * n);
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

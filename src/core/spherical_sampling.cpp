@@ -9,7 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 std::vector<int> sphereCells(const Eigen::Matrix3Xd& points, int bandwidth,
                              int num_threads)
@@ -71,4 +71,4 @@ SphericalSamples sampleSphere(const Eigen::Matrix3Xd& points, int bandwidth,
                      bandwidth);
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -13,7 +13,7 @@
 #include <cmath>
 #include <unordered_map>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 SurfacePatches surfacePatches(const Eigen::Matrix3Xd& points, double voxel_size,
                               const Eigen::Vector3d& viewpoint, int min_points)
@@ -93,9 +93,9 @@ SphericalSpectrum orientationSpectrum(const SurfacePatches& patches, int bandwid
   return F;
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 Eigen::Matrix3Xd patchNormalsAt(const SurfacePatches& patches,
                                 const Eigen::Matrix3Xd& points)
@@ -140,4 +140,4 @@ Eigen::VectorXd orientationWeights(const SurfacePatches& patches,
   return w;
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

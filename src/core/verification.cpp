@@ -12,7 +12,7 @@
 #include <cmath>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 FreeSpace freeSpace(const Eigen::Matrix3Xd& points, int bandwidth, double margin,
                     int num_threads)
@@ -139,4 +139,4 @@ PoseVerification verifyPose(const PointIndex& target, const VerificationSamples&
   return v;
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

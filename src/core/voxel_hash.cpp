@@ -9,7 +9,7 @@
 #include <cmath>
 #include <limits>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 namespace {
 
@@ -147,4 +147,4 @@ Eigen::Index PointIndex::nearest(const Eigen::Vector3d& q,
   return found;
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

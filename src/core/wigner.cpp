@@ -11,7 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 std::vector<double> logFactorials(int n)
 {
@@ -129,4 +129,4 @@ std::vector<double> wignerSmallD(int mp, int m, int bandwidth, double beta)
   return d;
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

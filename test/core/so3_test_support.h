@@ -21,7 +21,7 @@
 #include <random>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace test {
 
 using Complex = std::complex<double>;
@@ -168,4 +168,4 @@ inline Eigen::Matrix3d randomRotation(std::mt19937& rng)
 }
 
 } // namespace test
-} // namespace pcl_phaser
+} // namespace pcl::phaser

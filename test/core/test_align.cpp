@@ -2,7 +2,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * The engine's entry point, pcl_phaser::align(): bad input gives a reason instead of a
+ * The engine's entry point, pcl::phaser::align(): bad input gives a reason instead of a
  * throw or a crash, the guess is composed in the caller's frames, and one Target serves
  * concurrent calls with a single preparation.
  */
@@ -18,8 +18,8 @@
 
 namespace {
 
-using pcl_phaser::PhaserParameters;
-using pcl_phaser::PhaserResult;
+using pcl::phaser::PhaserParameters;
+using pcl::phaser::PhaserResult;
 
 /** Points on the walls, floor and ceiling of a 12 x 8 x 3 m room with a few boxes in
  * it, in the frame of a sensor at its middle. */
@@ -61,42 +61,42 @@ void expectFailure(const PhaserResult& r, const Eigen::Matrix4d& guess)
 
 TEST(EngineAlign, BadInputGivesAReason)
 {
-  const pcl_phaser::Target target(room(2000, 1));
-  const pcl_phaser::SourceCloud source{room(2000, 2), {}};
+  const pcl::phaser::Target target(room(2000, 1));
+  const pcl::phaser::SourceCloud source{room(2000, 2), {}};
   Eigen::Matrix4d guess = Eigen::Matrix4d::Identity();
   guess(0, 3) = 0.5;
   PhaserParameters bad = small();
   bad.bandwidth = 0;
-  expectFailure(pcl_phaser::align(target, source, guess, bad), guess);
+  expectFailure(pcl::phaser::align(target, source, guess, bad), guess);
   bad = small();
   bad.min_normalized_overlap = std::numeric_limits<double>::quiet_NaN();
-  expectFailure(pcl_phaser::align(target, source, guess, bad), guess);
+  expectFailure(pcl::phaser::align(target, source, guess, bad), guess);
   // A channel on one side only, a channel of the wrong length, no points, a NaN point.
-  expectFailure(pcl_phaser::align(target,
-                                  {source.points, {Eigen::VectorXd::Ones(2000)}}, guess,
-                                  small()),
+  expectFailure(pcl::phaser::align(target,
+                                   {source.points, {Eigen::VectorXd::Ones(2000)}},
+                                   guess, small()),
                 guess);
-  const pcl_phaser::Target short_channel(room(100, 3), {Eigen::VectorXd::Ones(99)});
-  expectFailure(pcl_phaser::align(short_channel,
-                                  {source.points, {Eigen::VectorXd::Ones(2000)}}, guess,
-                                  small()),
+  const pcl::phaser::Target short_channel(room(100, 3), {Eigen::VectorXd::Ones(99)});
+  expectFailure(pcl::phaser::align(short_channel,
+                                   {source.points, {Eigen::VectorXd::Ones(2000)}},
+                                   guess, small()),
                 guess);
-  expectFailure(pcl_phaser::align(target, {Eigen::Matrix3Xd(3, 0), {}}, guess, small()),
-                guess);
-  const pcl_phaser::Target empty{Eigen::Matrix3Xd(3, 0)};
-  expectFailure(pcl_phaser::align(empty, source, guess, small()), guess);
-  pcl_phaser::SourceCloud nan = source;
+  expectFailure(
+      pcl::phaser::align(target, {Eigen::Matrix3Xd(3, 0), {}}, guess, small()), guess);
+  const pcl::phaser::Target empty{Eigen::Matrix3Xd(3, 0)};
+  expectFailure(pcl::phaser::align(empty, source, guess, small()), guess);
+  pcl::phaser::SourceCloud nan = source;
   nan.points(1, 7) = std::numeric_limits<double>::quiet_NaN();
-  expectFailure(pcl_phaser::align(target, nan, guess, small()), guess);
-  pcl_phaser::SourceCloud far = source;
+  expectFailure(pcl::phaser::align(target, nan, guess, small()), guess);
+  pcl::phaser::SourceCloud far = source;
   far.points(0, 0) = 2e6;
-  expectFailure(pcl_phaser::align(target, far, guess, small()), guess);
+  expectFailure(pcl::phaser::align(target, far, guess, small()), guess);
   // All points at the center: no spherical signal.
-  const pcl_phaser::Target point{Eigen::Matrix3Xd::Zero(3, 10)};
-  expectFailure(pcl_phaser::align(point, source, guess, small()), guess);
+  const pcl::phaser::Target point{Eigen::Matrix3Xd::Zero(3, 10)};
+  expectFailure(pcl::phaser::align(point, source, guess, small()), guess);
   Eigen::Matrix4d inf = guess;
   inf(2, 3) = std::numeric_limits<double>::infinity();
-  const PhaserResult r = pcl_phaser::align(target, source, inf, small());
+  const PhaserResult r = pcl::phaser::align(target, source, inf, small());
   EXPECT_FALSE(r.error.empty());
   EXPECT_FALSE(r.converged);
 }
@@ -112,12 +112,12 @@ TEST(EngineAlign, ComposesTheGuessInTheCallersFrames)
   const Eigen::Matrix3Xd moved =
       (T.topLeftCorner<3, 3>().transpose() * points).colwise() -
       T.topLeftCorner<3, 3>().transpose() * T.topRightCorner<3, 1>();
-  const pcl_phaser::Target target(points);
+  const pcl::phaser::Target target(points);
   PhaserParameters p = small();
-  p.projection_center = pcl_phaser::ProjectionCenter::Centroid;
-  const PhaserResult r = pcl_phaser::align(target, {moved, {}}, T, p);
+  p.projection_center = pcl::phaser::ProjectionCenter::Centroid;
+  const PhaserResult r = pcl::phaser::align(target, {moved, {}}, T, p);
   ASSERT_TRUE(r.error.empty()) << r.error;
-  EXPECT_EQ(r.projection_center, pcl_phaser::ProjectionCenter::Centroid);
+  EXPECT_EQ(r.projection_center, pcl::phaser::ProjectionCenter::Centroid);
   EXPECT_LT((r.transformation - T).norm(), 0.5);
   ASSERT_FALSE(r.hypotheses.empty());
   EXPECT_TRUE(r.hypotheses[r.chosen_hypothesis].transformation.allFinite());
@@ -125,14 +125,14 @@ TEST(EngineAlign, ComposesTheGuessInTheCallersFrames)
 
 TEST(EngineAlign, OneTargetServesConcurrentCalls)
 {
-  const pcl_phaser::Target target(room(4000, 5));
-  const pcl_phaser::SourceCloud source{room(4000, 6), {}};
+  const pcl::phaser::Target target(room(4000, 5));
+  const pcl::phaser::SourceCloud source{room(4000, 6), {}};
   PhaserResult results[2];
   std::thread threads[2];
   for (int k = 0; k < 2; ++k)
     threads[k] = std::thread([&, k] {
       results[k] =
-          pcl_phaser::align(target, source, Eigen::Matrix4d::Identity(), small());
+          pcl::phaser::align(target, source, Eigen::Matrix4d::Identity(), small());
     });
   for (std::thread& t : threads)
     t.join();

@@ -18,7 +18,7 @@
 #include <cmath>
 #include <random>
 
-using namespace pcl_phaser;
+using namespace pcl::phaser;
 
 namespace {
 

@@ -19,7 +19,7 @@
 #include <cmath>
 #include <random>
 
-using namespace pcl_phaser;
+using namespace pcl::phaser;
 
 namespace {
 

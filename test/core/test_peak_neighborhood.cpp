@@ -14,7 +14,7 @@
 #include <cmath>
 #include <random>
 
-using namespace pcl_phaser;
+using namespace pcl::phaser;
 
 TEST(PeakNeighborhood, RotationBlockMatchesExactEvaluationAtThePoles)
 {

@@ -14,7 +14,7 @@
 #include <cmath>
 #include <vector>
 
-using namespace pcl_phaser;
+using namespace pcl::phaser;
 
 namespace {
 

@@ -15,9 +15,9 @@
 
 namespace {
 
-using pcl_phaser::looksSensorCentered;
-using pcl_phaser::polarFraction;
-using pcl_phaser::viewCoverage;
+using pcl::phaser::looksSensorCentered;
+using pcl::phaser::polarFraction;
+using pcl::phaser::viewCoverage;
 
 /** \a n points at ranges 2..30 m in directions uniform over the band |elevation| <=
  *  \a half_fov, seen from \a center and rotated by \a R. */

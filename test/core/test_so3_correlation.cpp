@@ -20,7 +20,7 @@
 #include <random>
 #include <thread>
 
-using namespace pcl_phaser;
+using namespace pcl::phaser;
 
 namespace {
 

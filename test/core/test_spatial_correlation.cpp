@@ -15,7 +15,7 @@
 #include <random>
 #include <thread>
 
-using namespace pcl_phaser;
+using namespace pcl::phaser;
 
 namespace {
 

@@ -15,7 +15,7 @@
 #include <cstring>
 #include <random>
 
-using namespace pcl_phaser;
+using namespace pcl::phaser;
 
 namespace {
 

@@ -19,7 +19,7 @@
 #include <random>
 #include <set>
 
-using namespace pcl_phaser;
+using namespace pcl::phaser;
 
 namespace {
 

@@ -17,7 +17,7 @@
 #include <cmath>
 #include <random>
 
-using namespace pcl_phaser;
+using namespace pcl::phaser;
 
 TEST(SphericalGrid, WeightsIntegratePolynomialsExactly)
 {

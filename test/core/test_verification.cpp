@@ -15,7 +15,7 @@
 #include <limits>
 #include <random>
 
-using namespace pcl_phaser;
+using namespace pcl::phaser;
 
 namespace {
 

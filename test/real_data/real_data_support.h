@@ -16,7 +16,7 @@
 
 #include <string>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace test {
 
 /** \brief A file of the shared data as PointT, NaN points removed (a test failure, and
@@ -35,4 +35,4 @@ typename pcl::PointCloud<PointT>::Ptr loadFiniteCloud(const std::string& relativ
 }
 
 } // namespace test
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -32,7 +32,7 @@ CloudC::Ptr loadFrame(const std::string& relative)
 {
   auto cloud = pcl::make_shared<CloudC>();
   std::string error;
-  if (!pcl::phaser::loadCloud(pcl_phaser::test::dataPath(relative), *cloud, &error))
+  if (!pcl::phaser::loadCloud(pcl::phaser::test::dataPath(relative), *cloud, &error))
     ADD_FAILURE() << error;
   return cloud;
 }
@@ -51,7 +51,7 @@ TEST(RealRgbd, KinectFramesUnderLargePosesWithAndWithoutColor)
   int fused_ok = 0, range_ok = 0;
   const int poses = 5;
   for (int k = 0; k < poses; ++k) {
-    const Eigen::Matrix4d T = pcl_phaser::bench::randomPose(rng, 0.5);
+    const Eigen::Matrix4d T = pcl::phaser::bench::randomPose(rng, 0.5);
     auto source = pcl::make_shared<CloudC>();
     pcl::transformPointCloud(*second, *source, Eigen::Matrix4d(T.inverse()));
     double rre[2], rte[2];
@@ -72,8 +72,8 @@ TEST(RealRgbd, KinectFramesUnderLargePosesWithAndWithoutColor)
       estimate[use_color] = G;
       EXPECT_EQ((phaser.getFusedChannels() & pcl::phaser::CHANNEL_COLOR) != 0u,
                 use_color != 0);
-      rre[use_color] = pcl_phaser::bench::rreDeg(G, T);
-      rte[use_color] = pcl_phaser::bench::rteM(G, T);
+      rre[use_color] = pcl::phaser::bench::rreDeg(G, T);
+      rte[use_color] = pcl::phaser::bench::rteM(G, T);
       const bool ok =
           phaser.hasConverged() && rre[use_color] < 3.0 && rte[use_color] < 0.05;
       (use_color ? fused_ok : range_ok) += ok;

@@ -21,8 +21,8 @@
 
 namespace {
 
-using pcl_phaser::bench::Cloud;
-using pcl_phaser::bench::PointT;
+using pcl::phaser::bench::Cloud;
+using pcl::phaser::bench::PointT;
 
 } // namespace
 
@@ -32,14 +32,14 @@ TEST(PartialViews, QuarterWedgeRegistersAndConverges)
 {
   const std::string file = "lidar/hdl32_fastgicp/251370668.pcd";
   PCL_PHASER_REQUIRE_DATA(file);
-  const auto scan = pcl_phaser::test::loadFiniteCloud<PointT>(file);
-  pcl_phaser::bench::Condition wedge;
-  ASSERT_TRUE(pcl_phaser::bench::parseCondition("overlap:0.25", wedge));
+  const auto scan = pcl::phaser::test::loadFiniteCloud<PointT>(file);
+  pcl::phaser::bench::Condition wedge;
+  ASSERT_TRUE(pcl::phaser::bench::parseCondition("overlap:0.25", wedge));
   std::mt19937 rng(7);
   for (int trial = 0; trial < 10; ++trial) {
     auto source = pcl::make_shared<Cloud>(*scan);
-    pcl_phaser::bench::applyCondition(wedge, *source, rng);
-    const Eigen::Matrix4d T = pcl_phaser::bench::randomPose(rng, 2.0);
+    pcl::phaser::bench::applyCondition(wedge, *source, rng);
+    const Eigen::Matrix4d T = pcl::phaser::bench::randomPose(rng, 2.0);
     pcl::transformPointCloud(*source, *source, T.cast<float>());
     pcl::PhaserRegistration<PointT, PointT> phaser;
     phaser.setNumberOfThreads(2);
@@ -48,9 +48,10 @@ TEST(PartialViews, QuarterWedgeRegistersAndConverges)
     Cloud aligned;
     phaser.align(aligned);
     const Eigen::Matrix4d estimate = phaser.getFinalTransformation().cast<double>();
-    EXPECT_LT(pcl_phaser::bench::rreDeg(estimate, T.inverse()), 5.0)
+    EXPECT_LT(pcl::phaser::bench::rreDeg(estimate, T.inverse()), 5.0)
         << "trial " << trial;
-    EXPECT_LT(pcl_phaser::bench::rteM(estimate, T.inverse()), 0.3) << "trial " << trial;
+    EXPECT_LT(pcl::phaser::bench::rteM(estimate, T.inverse()), 0.3)
+        << "trial " << trial;
     EXPECT_TRUE(phaser.hasConverged()) << "trial " << trial;
   }
 }

@@ -33,7 +33,7 @@ using Center = Phaser::ProjectionCenter;
 
 CloudXYZ::Ptr loadFinite(const std::string& relative)
 {
-  return pcl_phaser::test::loadFiniteCloud<pcl::PointXYZ>(relative);
+  return pcl::phaser::test::loadFiniteCloud<pcl::PointXYZ>(relative);
 }
 
 Eigen::Matrix3Xd matrix(const CloudXYZ& cloud)
@@ -58,7 +58,7 @@ int automaticRandomPoses(const std::string& relative, int poses)
   std::mt19937 rng(7);
   int ok = 0;
   for (int k = 0; k < poses; ++k) {
-    const Eigen::Matrix4d T = pcl_phaser::bench::randomPose(rng, 2.0);
+    const Eigen::Matrix4d T = pcl::phaser::bench::randomPose(rng, 2.0);
     auto source = pcl::make_shared<CloudXYZ>();
     pcl::transformPointCloud(*scan, *source, Eigen::Matrix4d(T.inverse()));
     Phaser phaser;
@@ -69,7 +69,8 @@ int automaticRandomPoses(const std::string& relative, int poses)
     CloudXYZ aligned;
     phaser.align(aligned);
     const Eigen::Matrix4d G = phaser.getFinalTransformation().cast<double>();
-    const double r = pcl_phaser::bench::rreDeg(G, T), t = pcl_phaser::bench::rteM(G, T);
+    const double r = pcl::phaser::bench::rreDeg(G, T),
+                 t = pcl::phaser::bench::rteM(G, T);
     std::printf("  %s pose %d: %s, RRE %.3f deg, RTE %.3f m\n", relative.c_str(), k,
                 name(phaser.getResult().projection_center), r, t);
     ok += phaser.hasConverged() && r < 2.0 && t < 0.3;
@@ -109,25 +110,25 @@ TEST(AutomaticCenter, SeparatesSensorFramesFromObjectsCamerasAndRooms)
         "lidar/kitti_raw_hdl64/0000000000.bin", "lidar/kitti_synthetic_gt/cloud049.ply",
         "lidar/kitti_synthetic_gt/cloud050.ply"}) {
     const Eigen::Matrix3Xd p = matrix(*loadFinite(lidar));
-    const double c = pcl_phaser::viewCoverage(p, origin);
-    const double polar = pcl_phaser::polarFraction(p, origin);
+    const double c = pcl::phaser::viewCoverage(p, origin);
+    const double polar = pcl::phaser::polarFraction(p, origin);
     std::printf("  %-45s coverage %.3f polar %.4f\n", lidar, c, polar);
-    EXPECT_GE(c, pcl_phaser::kSensorFrameCoverage + 0.05) << lidar;
-    EXPECT_LE(polar, pcl_phaser::kSensorFramePolarFraction / 5) << lidar;
-    EXPECT_TRUE(pcl_phaser::looksSensorCentered(p, origin)) << lidar;
+    EXPECT_GE(c, pcl::phaser::kSensorFrameCoverage + 0.05) << lidar;
+    EXPECT_LE(polar, pcl::phaser::kSensorFramePolarFraction / 5) << lidar;
+    EXPECT_TRUE(pcl::phaser::looksSensorCentered(p, origin)) << lidar;
   }
   for (const char* object :
        {"pcl/bun0.pcd", "pcl/bun4.pcd", "object/stanford_bunny/bun000.ply",
         "object/stanford_bunny/bun045.ply", "pcl/frame_20121214T142255.814212.pcd",
         "pcl/frame_20121214T142256.068683.pcd"}) {
-    const double c = pcl_phaser::viewCoverage(matrix(*loadFinite(object)), origin);
+    const double c = pcl::phaser::viewCoverage(matrix(*loadFinite(object)), origin);
     std::printf("  %-45s coverage %.3f\n", object, c);
-    EXPECT_LE(c, pcl_phaser::kSensorFrameCoverage - 0.04) << object;
+    EXPECT_LE(c, pcl::phaser::kSensorFrameCoverage - 0.04) << object;
   }
   for (const char* room : {"pcl/office1_keypoints.pcd", "pcl/office2_keypoints.pcd"}) {
-    const double polar = pcl_phaser::polarFraction(matrix(*loadFinite(room)), origin);
+    const double polar = pcl::phaser::polarFraction(matrix(*loadFinite(room)), origin);
     std::printf("  %-45s polar %.4f\n", room, polar);
-    EXPECT_GE(polar, 3 * pcl_phaser::kSensorFramePolarFraction) << room;
+    EXPECT_GE(polar, 3 * pcl::phaser::kSensorFramePolarFraction) << room;
   }
 }
 
@@ -189,7 +190,7 @@ TEST(AutomaticCenter, OfficeKeypointsUseTheCentroid)
       -2.3865, 0.0037, -0.0106, 0.9999, 0.7778;
   const Eigen::Matrix4d G = alignAutomatic(source, target, Center::Centroid);
   std::printf("  office, centroid: RRE %.3f deg, RTE %.3f m\n",
-              pcl_phaser::bench::rreDeg(G, truth), pcl_phaser::bench::rteM(G, truth));
-  EXPECT_LT(pcl_phaser::bench::rreDeg(G, truth) * M_PI / 180.0, 0.1745);
-  EXPECT_LT(pcl_phaser::bench::rteM(G, truth), 1.0);
+              pcl::phaser::bench::rreDeg(G, truth), pcl::phaser::bench::rteM(G, truth));
+  EXPECT_LT(pcl::phaser::bench::rreDeg(G, truth) * M_PI / 180.0, 0.1745);
+  EXPECT_LT(pcl::phaser::bench::rteM(G, truth), 1.0);
 }

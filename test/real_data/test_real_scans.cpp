@@ -36,19 +36,19 @@ constexpr double kDeg = M_PI / 180.0;
 
 Cloud::Ptr load(const std::string& relative)
 {
-  return pcl_phaser::test::loadFiniteCloud<PointT>(relative);
+  return pcl::phaser::test::loadFiniteCloud<PointT>(relative);
 }
 
-using pcl_phaser::bench::randomPose;
+using pcl::phaser::bench::randomPose;
 
 /** RRE (deg) and RTE (m) of estimate \a A against truth \a B. */
 double rreDeg(const Eigen::Matrix4d& A, const Eigen::Matrix4d& B)
 {
-  return pcl_phaser::bench::rreDeg(A, B);
+  return pcl::phaser::bench::rreDeg(A, B);
 }
 double rte(const Eigen::Matrix4d& A, const Eigen::Matrix4d& B)
 {
-  return pcl_phaser::bench::rteM(A, B);
+  return pcl::phaser::bench::rteM(A, B);
 }
 
 /** \a scan seen from pose \a T (the source is T^-1 \a seen) and registered against
@@ -127,7 +127,7 @@ using CloudXYZ = pcl::PointCloud<pcl::PointXYZ>;
 
 CloudXYZ::Ptr loadXYZ(const std::string& relative)
 {
-  return pcl_phaser::test::loadFiniteCloud<pcl::PointXYZ>(relative);
+  return pcl::phaser::test::loadFiniteCloud<pcl::PointXYZ>(relative);
 }
 
 Eigen::Matrix4d fromRows(const double (&r)[12])
@@ -161,7 +161,7 @@ TEST(RealPairs, Hdl32AgainstReference)
   Eigen::Matrix4d reference;
   std::string error;
   ASSERT_TRUE(pcl::phaser::loadTransform(
-      pcl_phaser::test::dataPath("lidar/hdl32_fastgicp/relative.txt"), reference,
+      pcl::phaser::test::dataPath("lidar/hdl32_fastgicp/relative.txt"), reference,
       &error))
       << error;
   // The default center, and ProjectionCenter::Automatic, which must recognize two scans
@@ -205,7 +205,7 @@ TEST(RealPairs, OfficeKeypointsAgainstGroundTruth)
   CloudXYZ out;
   phaser.align(out);
   const Eigen::Matrix4d G = phaser.getFinalTransformation().cast<double>();
-  const pcl_phaser::PhaserResult& e = phaser.getResult();
+  const pcl::phaser::PhaserResult& e = phaser.getResult();
   std::printf(
       "  global: RRE %.3f deg, RTE %.4f m, score %.1f, inliers %.3f, constraint "
       "%.3f, samples %d\n",
@@ -240,7 +240,7 @@ TEST(RealPairs, BunnySacIaPatternWithinIcpBasin)
   CloudXYZ out;
   phaser.align(out);
   const Eigen::Matrix4d G = phaser.getFinalTransformation().cast<double>();
-  const pcl_phaser::PhaserResult& e = phaser.getResult();
+  const pcl::phaser::PhaserResult& e = phaser.getResult();
   std::printf("  global: RRE %.3f deg, mean displacement %.4f m, inliers %.3f, "
               "constraint %.3f, samples %d\n",
               rreDeg(G, truth), meanDisplacement(*source, G, truth), e.inlier_fraction,
@@ -284,7 +284,7 @@ TEST(RealScans, SecondRotationHypothesisRescuesAMirrorPeak)
   for (int k = 0; k < 2; ++k) {
     pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
     phaser.setNumberOfThreads(2);
-    pcl_phaser::PhaserParameters params = phaser.getParameters();
+    pcl::phaser::PhaserParameters params = phaser.getParameters();
     params.orientation_candidates = 0;
     params.rotation_candidates = k == 0 ? 1 : 3;
     phaser.setParameters(params);
@@ -294,7 +294,7 @@ TEST(RealScans, SecondRotationHypothesisRescuesAMirrorPeak)
     phaser.align(aligned);
     error[k] = rreDeg(phaser.getFinalTransformation().cast<double>(), T);
     if (k == 1) {
-      const pcl_phaser::PhaserResult& r = phaser.getResult();
+      const pcl::phaser::PhaserResult& r = phaser.getResult();
       ASSERT_GE(r.hypotheses.size(), 2u);
       ASSERT_GE(r.chosen_hypothesis, 0);
       ASSERT_LT(r.chosen_hypothesis, static_cast<int>(r.hypotheses.size()));
@@ -346,15 +346,15 @@ TEST(RealScans, CovarianceConsistentOnKitti)
   const std::string relative = "lidar/kitti_raw_hdl64/0000000000.bin";
   PCL_PHASER_REQUIRE_DATA(relative);
   const Cloud::Ptr scan = load(relative);
-  pcl_phaser::bench::Condition noise;
-  ASSERT_TRUE(pcl_phaser::bench::parseCondition("noise:50", noise));
+  pcl::phaser::bench::Condition noise;
+  ASSERT_TRUE(pcl::phaser::bench::parseCondition("noise:50", noise));
   std::mt19937 rng(11);
   int converged = 0, inside = 0;
   double sum_full = 0.0, sum_translation = 0.0;
   for (int k = 0; k < 16; ++k) {
     const Eigen::Matrix4d T = randomPose(rng, 2.0);
     Cloud perturbed = *scan;
-    pcl_phaser::bench::applyCondition(noise, perturbed, rng);
+    pcl::phaser::bench::applyCondition(noise, perturbed, rng);
     pcl::PhaserRegistration<PointT, PointT> phaser;
     alignSeenFrom(perturbed, scan, T, phaser);
     if (!phaser.hasConverged())

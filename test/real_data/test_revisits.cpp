@@ -25,7 +25,7 @@ const std::string kDir = "lidar/balm_handheld/";
 /** T_target_source of the pair (source, target) in pairs.txt; identity if absent. */
 Eigen::Matrix4d referencePose(const std::string& source, const std::string& target)
 {
-  std::ifstream in(pcl_phaser::test::dataPath(kDir + "pairs.txt"));
+  std::ifstream in(pcl::phaser::test::dataPath(kDir + "pairs.txt"));
   std::string line;
   while (std::getline(in, line)) {
     std::istringstream is(line);
@@ -87,8 +87,8 @@ TEST(Revisits, PairsMetersApartRegisterAndConverge)
       {"full84.pcd", "full162.pcd"},  // 12.4 m, 83 deg
       {"full54.pcd", "full156.pcd"}}; // 20.8 m, 92 deg
   for (const auto& [s, t] : pairs) {
-    const auto source = pcl_phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + s);
-    const auto target = pcl_phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + t);
+    const auto source = pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + s);
+    const auto target = pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + t);
     bool converged = false;
     const Errors e = errors(align(source, target, converged), referencePose(s, t));
     EXPECT_LT(e.rotation_deg, 5.0) << s << " -> " << t;
@@ -101,9 +101,9 @@ TEST(Revisits, SwappedInputsGiveTheInverse)
 {
   PCL_PHASER_REQUIRE_DATA(kDir + "pairs.txt");
   const auto a =
-      pcl_phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + "full120.pcd");
+      pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + "full120.pcd");
   const auto b =
-      pcl_phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + "full132.pcd");
+      pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + "full132.pcd");
   const Eigen::Matrix4d truth = referencePose("full120.pcd", "full132.pcd");
   bool forward_converged = false, backward_converged = false;
   const Errors forward = errors(align(a, b, forward_converged), truth);
@@ -123,8 +123,8 @@ TEST(Revisits, UnrelatedPlacesDoNotConverge)
   PCL_PHASER_REQUIRE_DATA(kDir + "full18.pcd");
   PCL_PHASER_REQUIRE_DATA("lidar/kitti_raw_hdl64/0000000000.bin");
   const auto balm =
-      pcl_phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + "full18.pcd");
-  const auto kitti = pcl_phaser::test::loadFiniteCloud<pcl::PointXYZI>(
+      pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + "full18.pcd");
+  const auto kitti = pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(
       "lidar/kitti_raw_hdl64/0000000000.bin");
   bool converged = true;
   std::string why;

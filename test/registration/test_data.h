@@ -11,7 +11,7 @@
 #include <string>
 #include <system_error>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace test {
 
 /** \brief The shared real-data directory: the environment variable PCL_PHASER_DATA if
@@ -50,7 +50,7 @@ inline bool haveData(const std::string& relative)
 }
 
 } // namespace test
-} // namespace pcl_phaser
+} // namespace pcl::phaser
 
 /** \brief Skip the current test (GTEST_SKIP, so only in a test body or fixture
  * SetUp) with a message naming the missing file when the shared data lacks it.
@@ -58,8 +58,8 @@ inline bool haveData(const std::string& relative)
  */
 #define PCL_PHASER_REQUIRE_DATA(relative)                                              \
   do {                                                                                 \
-    if (!::pcl_phaser::test::haveData(relative))                                       \
+    if (!::pcl::phaser::test::haveData(relative))                                      \
       GTEST_SKIP() << "shared test data not found: "                                   \
-                   << ::pcl_phaser::test::dataPath(relative)                           \
+                   << ::pcl::phaser::test::dataPath(relative)                          \
                    << " (set PCL_PHASER_DATA to the shared data directory)";           \
   } while (false)

@@ -135,7 +135,7 @@ TEST(PhaserRegistration, RecoversKnownPoseSensorOrigin)
                                    makePose({0.3, -1, 0.2}, 0.9, {0.0, 0.0, 0.0})})
     for (bool normalized : {false, true}) {
       pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
-      pcl_phaser::PhaserParameters params = phaser.getParameters();
+      pcl::phaser::PhaserParameters params = phaser.getParameters();
       params.normalized_refinement = normalized;
       phaser.setParameters(params);
       phaser.setInputSource(seenFrom(*target, T));
@@ -163,21 +163,21 @@ TEST(PhaserRegistration, ConvergenceMeansAVerifiedPose)
   CloudXYZ out;
   phaser.align(out);
   ASSERT_TRUE(phaser.hasConverged());
-  const pcl_phaser::PhaserResult e = phaser.getResult();
+  const pcl::phaser::PhaserResult e = phaser.getResult();
   EXPECT_TRUE(e.verified);
   EXPECT_GT(e.inlier_fraction, 0.5); // the same room seen again
   EXPECT_GT(e.constraint, 0.05);     // floor and walls of two directions
   EXPECT_LE(e.free_space_violation,
-            pcl_phaser::PhaserParameters().max_free_space_violation);
+            pcl::phaser::PhaserParameters().max_free_space_violation);
   // Each threshold flips the decision where the pose's own figure lies.
   const auto convergesWith = [&](auto set) {
-    pcl_phaser::PhaserParameters p = phaser.getParameters();
+    pcl::phaser::PhaserParameters p = phaser.getParameters();
     set(p);
     phaser.setParameters(p);
     phaser.align(out);
     return phaser.hasConverged();
   };
-  const pcl_phaser::PhaserParameters defaults = phaser.getParameters();
+  const pcl::phaser::PhaserParameters defaults = phaser.getParameters();
   EXPECT_TRUE(
       convergesWith([&](auto& p) { p.min_inlier_fraction = e.inlier_fraction; }));
   EXPECT_FALSE(convergesWith(
@@ -343,7 +343,7 @@ TEST(PhaserRegistration, CovarianceIsPositiveDefiniteAndShrinksWithBandwidth)
     EXPECT_LT((cov - cov.transpose()).norm(), 1e-12 * cov.norm());
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(cov);
     EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0) << "B " << B;
-    const double floor = pcl_phaser::rotationModelError(B);
+    const double floor = pcl::phaser::rotationModelError(B);
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> rot(cov.topLeftCorner<3, 3>());
     EXPECT_GE(rot.eigenvalues().minCoeff(), floor * floor * (1 - 1e-9));
     const double sigma_t = std::sqrt(cov.bottomRightCorner<3, 3>().trace());
@@ -356,7 +356,7 @@ TEST(PhaserRegistration, CovarianceIsPositiveDefiniteAndShrinksWithBandwidth)
   pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> unrelated;
   unrelated.setInputSource(makeScene<pcl::PointXYZ>(6, 300));
   unrelated.setInputTarget(target);
-  pcl_phaser::PhaserParameters never = unrelated.getParameters();
+  pcl::phaser::PhaserParameters never = unrelated.getParameters();
   never.min_peak_score = 1e9; // nothing converges
   unrelated.setParameters(never);
   CloudXYZ out;
@@ -596,7 +596,7 @@ TEST(PhaserRegistrationBadInput, ParametersOutOfRange)
   };
   auto setting = [&](auto&& change) {
     check([&](auto& phaser) {
-      pcl_phaser::PhaserParameters q = phaser.getParameters();
+      pcl::phaser::PhaserParameters q = phaser.getParameters();
       change(q);
       phaser.setParameters(q);
     });

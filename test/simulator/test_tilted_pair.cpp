@@ -24,7 +24,7 @@ constexpr double kRadToDeg = 180.0 / M_PI;
 
 struct Engine {
   Eigen::Matrix3Xd points;
-  pcl_phaser::ChannelValues channels;
+  pcl::phaser::ChannelValues channels;
 };
 
 Engine toEngine(const pcl::PointCloud<pcl::PointXYZI>& cloud)
@@ -52,11 +52,11 @@ TEST(TiltedPair, NormalizedRefinementRemovesTheTiltBias)
         std::acos(std::min(1.0, (R_true * Eigen::Vector3d::UnitZ()).z())) * kRadToDeg;
     double rre[2], rte[2];
     for (int normalized = 0; normalized < 2; ++normalized) {
-      pcl_phaser::PhaserParameters p;
+      pcl::phaser::PhaserParameters p;
       p.num_threads = 2;
       p.normalized_refinement = normalized != 0;
-      const pcl_phaser::Target model(target.points, target.channels);
-      const pcl_phaser::PhaserResult e = pcl_phaser::align(
+      const pcl::phaser::Target model(target.points, target.channels);
+      const pcl::phaser::PhaserResult e = pcl::phaser::align(
           model, {source.points, source.channels}, Eigen::Matrix4d::Identity(), p);
       ASSERT_TRUE(e.error.empty()) << e.error;
       const Eigen::Matrix3d R = e.transformation.topLeftCorner<3, 3>();
@@ -111,14 +111,14 @@ TEST(TiltedPair, NormalizedRefinementInASinglePass)
   // One pass refines about the source's own center, with the supports of pass 1.
   const pcl::phaser::ScanPair pair = pcl::phaser::makeDemoPair(1);
   const Engine source = toEngine(pair.source), target = toEngine(pair.target);
-  pcl_phaser::PhaserParameters p;
+  pcl::phaser::PhaserParameters p;
   p.num_threads = 2;
   p.passes = 1;
   p.normalized_refinement = true;
-  const pcl_phaser::Target model(target.points, target.channels);
-  const pcl_phaser::SourceCloud input{source.points, source.channels};
-  const pcl_phaser::PhaserResult e =
-      pcl_phaser::align(model, input, Eigen::Matrix4d::Identity(), p);
+  const pcl::phaser::Target model(target.points, target.channels);
+  const pcl::phaser::SourceCloud input{source.points, source.channels};
+  const pcl::phaser::PhaserResult e =
+      pcl::phaser::align(model, input, Eigen::Matrix4d::Identity(), p);
   ASSERT_TRUE(e.error.empty()) << e.error;
   const Eigen::Matrix3d R_true = pair.T_target_source.topLeftCorner<3, 3>();
   const double rre =
@@ -129,13 +129,13 @@ TEST(TiltedPair, NormalizedRefinementInASinglePass)
   EXPECT_LT(rre, 10.0); // one pass is parallax-limited (doc/benchmarks.md section 3)
   // The target model prepared with the supports is reused for the same parameters and
   // prepared again, without them, for the plain refinement.
-  const pcl_phaser::PhaserResult again =
-      pcl_phaser::align(model, input, Eigen::Matrix4d::Identity(), p);
+  const pcl::phaser::PhaserResult again =
+      pcl::phaser::align(model, input, Eigen::Matrix4d::Identity(), p);
   EXPECT_EQ(again.target_ms, 0.0);
   EXPECT_TRUE(again.transformation == e.transformation);
   p.normalized_refinement = false;
-  const pcl_phaser::PhaserResult plain =
-      pcl_phaser::align(model, input, Eigen::Matrix4d::Identity(), p);
+  const pcl::phaser::PhaserResult plain =
+      pcl::phaser::align(model, input, Eigen::Matrix4d::Identity(), p);
   EXPECT_TRUE(plain.error.empty()) << plain.error;
   EXPECT_GT(plain.target_ms, 0.0);
 }

@@ -41,9 +41,9 @@ using pcl::phaser::loadCloud;
 using pcl::phaser::loadTransform;
 using pcl::phaser::parseTransform;
 using pcl::phaser::saveCloud;
-using pcl_phaser::test::dataPath;
+using pcl::phaser::test::dataPath;
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 namespace test {
 
 /** A fresh directory under the system temp dir, removed with its content. */
@@ -251,4 +251,4 @@ inline double rotationAngleDeg(const Eigen::Matrix4d& t)
 }
 
 } // namespace test
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -6,7 +6,7 @@
  */
 #include "cloud_reading_test_support.h"
 
-using namespace pcl_phaser::test;
+using namespace pcl::phaser::test;
 
 /* ================================ real data ==================================== */
 
@@ -243,7 +243,7 @@ TEST(TransformIoData, LoadsEveryDataTransform)
   PCL_PHASER_REQUIRE_DATA("lidar/hdl32_fastgicp/relative.txt");
   std::vector<std::string> files;
   for (const auto& entry :
-       fs::recursive_directory_iterator(pcl_phaser::test::dataDir())) {
+       fs::recursive_directory_iterator(pcl::phaser::test::dataDir())) {
     const std::string name = entry.path().filename().string();
     if (entry.is_regular_file() && entry.path().extension() == ".txt" &&
         (name.rfind("T_", 0) == 0 || name == "relative.txt"))
@@ -268,7 +268,7 @@ TEST(TransformIoData, LoadsEveryDataTransform)
   EXPECT_DOUBLE_EQ(relative(1, 0), -0.0108468);
   EXPECT_NEAR(rotationAngleDeg(relative), 0.7, 0.1);
 
-  if (pcl_phaser::test::haveData("object/stanford_bunny/T_bun000_bun045.txt")) {
+  if (pcl::phaser::test::haveData("object/stanford_bunny/T_bun000_bun045.txt")) {
     Eigen::Matrix4d bunny;
     ASSERT_TRUE(loadTransform(dataPath("object/stanford_bunny/T_bun000_bun045.txt"),
                               bunny, &error))
@@ -278,7 +278,7 @@ TEST(TransformIoData, LoadsEveryDataTransform)
   }
   const std::string kitti =
       "lidar/kitti_synthetic_gt/T_cloud050_cloud049_procrustes.txt";
-  if (pcl_phaser::test::haveData(kitti)) {
+  if (pcl::phaser::test::haveData(kitti)) {
     Eigen::Matrix4d t;
     ASSERT_TRUE(loadTransform(dataPath(kitti), t, &error)) << error;
     EXPECT_NEAR(rotationAngleDeg(t), 154.0, 1.0);
@@ -296,9 +296,9 @@ TEST(CloudIoTestData, EnvironmentOverridesDataDir)
   fs::create_directories(dir + "/sub");
   writeFile(dir + "/sub/a.txt", "x");
   ::setenv("PCL_PHASER_DATA", dir.c_str(), 1);
-  EXPECT_EQ(pcl_phaser::test::dataDir(), dir);
-  EXPECT_TRUE(pcl_phaser::test::haveData("sub/a.txt"));
-  EXPECT_FALSE(pcl_phaser::test::haveData("sub/missing.txt"));
+  EXPECT_EQ(pcl::phaser::test::dataDir(), dir);
+  EXPECT_TRUE(pcl::phaser::test::haveData("sub/a.txt"));
+  EXPECT_FALSE(pcl::phaser::test::haveData("sub/missing.txt"));
   EXPECT_EQ(dataPath("sub/a.txt"),
             fs::path(dir + "/sub/a.txt").lexically_normal().string());
   if (old)

@@ -6,7 +6,7 @@
  */
 #include "cloud_reading_test_support.h"
 
-using namespace pcl_phaser::test;
+using namespace pcl::phaser::test;
 
 TEST(CloudIoSave, RoundTripEveryFormat)
 {

@@ -408,7 +408,7 @@ TEST_F(PclPhaserAlign, GroundTruthOnRealScans)
   PCL_PHASER_REQUIRE_DATA(rel + "251371071.pcd");
   PCL_PHASER_REQUIRE_DATA(rel + "251370668.pcd");
   PCL_PHASER_REQUIRE_DATA(rel + "relative.txt");
-  using pcl_phaser::test::dataPath;
+  using pcl::phaser::test::dataPath;
   const ToolRun r =
       run(quote(dataPath(rel + "251371071.pcd")) + " " +
           quote(dataPath(rel + "251370668.pcd")) + " --gt " +

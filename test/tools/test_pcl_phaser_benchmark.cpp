@@ -21,7 +21,7 @@
 
 namespace {
 
-using namespace pcl_phaser::bench;
+using namespace pcl::phaser::bench;
 
 Cloud ring(int n, double radius)
 {
@@ -199,7 +199,7 @@ TEST(DerivedPairs, ReproduceTheReferencePosesOfPairsTxt)
 {
   PCL_PHASER_REQUIRE_DATA("lidar/balm_handheld/poses_T_world_lidar.txt");
   PCL_PHASER_REQUIRE_DATA("lidar/balm_handheld/pairs.txt");
-  const std::string folder = pcl_phaser::test::dataPath("lidar/balm_handheld");
+  const std::string folder = pcl::phaser::test::dataPath("lidar/balm_handheld");
   std::vector<ScanPose> poses;
   std::vector<RevisitPair> listed;
   std::string error;
@@ -254,7 +254,7 @@ TEST(PclPhaserBenchmark, ComparesPhaserWithSacIaOnARealScan)
   const std::string csv = ::testing::TempDir() + "/pcl_phaser_benchmark.csv";
   int status = 0;
   const std::string md = run(
-      "-data " + pcl_phaser::test::dataDir() +
+      "-data " + pcl::phaser::test::dataDir() +
           " -scans kitti_synthetic -poses 2 -methods phaser,phaser_xyz,sacia -csv " +
           csv + " 2>/dev/null",
       status);
@@ -280,7 +280,7 @@ TEST(PclPhaserBenchmark, RevisitStudyTabulatesMethodsByDistance)
   run("-study revisits -methods nope 2>&1", status);
   EXPECT_NE(status, 0);
   PCL_PHASER_REQUIRE_DATA("lidar/balm_handheld/pairs.txt");
-  const std::string md = run("-data " + pcl_phaser::test::dataDir() +
+  const std::string md = run("-data " + pcl::phaser::test::dataDir() +
                                  " -study revisits -methods phaser_xyz -max-pairs 2 "
                                  "2>/dev/null",
                              status);
@@ -297,7 +297,7 @@ TEST(PclPhaserBenchmark, RevisitStudyTabulatesMethodsByDistance)
   EXPECT_NE(md.find("| phaser_xyz | all | 2 | "), std::string::npos) << md;
   run("-study revisits -derived-pairs -1 2>&1", status);
   EXPECT_NE(status, 0);
-  const std::string derived = run("-data " + pcl_phaser::test::dataDir() +
+  const std::string derived = run("-data " + pcl::phaser::test::dataDir() +
                                       " -study revisits -derived-pairs 1 -max-pairs 1 "
                                       "-methods phaser_xyz 2>/dev/null",
                                   status);

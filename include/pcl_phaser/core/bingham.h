@@ -17,7 +17,7 @@
 #include <random>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief Largest |z| that the maximum-likelihood fit returns. 1e6 is an angular
  *  standard deviation of about sqrt(2e-6) rad = 0.08 deg, far below any SO(3) grid
@@ -134,4 +134,4 @@ namespace detail {
 double scaledBesselI(int n, double x);
 } // namespace detail
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -13,7 +13,7 @@
 
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief Each channel mapped robustly to a common scale (normalizeChannel: median
  *  removed, divided by the scaled MAD, clamped), so raw uint16 reflectivity cannot
@@ -56,4 +56,4 @@ SpatialSpectrum cloudSpatialSpectrum(const SpatialGrid& grid,
                                      const ChannelValues& channels, int levels,
                                      int num_threads);
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

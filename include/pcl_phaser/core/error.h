@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief Thrown by the engine when a parameter is outside its documented range
  *  (e.g. a bandwidth outside [1, 256]) or inputs have inconsistent sizes.
@@ -30,4 +30,4 @@ inline void checkBandwidth(int bandwidth, const char* what = "bandwidth")
                           std::to_string(bandwidth));
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

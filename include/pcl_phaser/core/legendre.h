@@ -6,7 +6,7 @@
 
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief Orthonormal associated Legendre functions with the Condon-Shortley phase,
  *  Pbar_l^m(x), so that Y_l^m = Pbar_l^m(cos theta) e^{i m phi} is orthonormal on S^2.
@@ -32,4 +32,4 @@ inline int legendreCount(int bandwidth)
   return bandwidth * (bandwidth + 1) / 2;
 }
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -12,7 +12,7 @@
 
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief A rotation of the SO(3) grid and the correlation there. */
 struct RotationSample {
@@ -150,4 +150,4 @@ double rotationModelError(int bandwidth);
  *  \param[in] bandwidth the bandwidth of the correlation */
 Eigen::Matrix3d rotationCovariance(const BinghamDistribution& peak, int bandwidth);
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

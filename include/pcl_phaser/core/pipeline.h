@@ -16,7 +16,7 @@
 /** \brief The registration engine: Eigen and FFTW only, no PCL. align() is its entry
  *  point; pcl::PhaserRegistration translates PCL types into its inputs and its result
  *  back. Layers and data flow: doc/architecture.md. */
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief Per-point values of the channels fused with the geometry (intensity,
  *  reflectivity, ambient, luminance...), one vector per channel, in the same order for
@@ -248,4 +248,4 @@ Eigen::Matrix<double, 6, 6> poseCovariance(const PhaserResult& result,
                                            const BinghamDistribution& rotation,
                                            int bandwidth);
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief A rigid pose q_t = R q_s + t. */
 struct RigidPose {
@@ -37,4 +37,4 @@ RigidPose refinePoseWithin(const PointIndex& target, const VerificationSamples& 
                            const RigidPose& start, int iterations, double max_angle,
                            double max_shift);
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief Fraction of the sphere's area (0..1) in whose directions \a points are seen
  *  from \a viewpoint: the area of the 16 x 16 Driscoll-Healy cells (B = 8, ~11 deg)
@@ -41,4 +41,4 @@ constexpr double kSensorFramePolarFraction = 0.005;
 bool looksSensorCentered(const Eigen::Matrix3Xd& points,
                          const Eigen::Vector3d& viewpoint);
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

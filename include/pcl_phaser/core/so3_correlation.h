@@ -14,7 +14,7 @@
 #include <memory>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief The correlation C(R) = int f(w) h(R^-1 w) dw sampled on the (2Bo)^3 Euler
  * grid (f = target, h = source). Owns its buffer; cheap to move. */
@@ -141,4 +141,4 @@ evaluateCorrelations(const std::vector<SpectrumPair>& pairs,
                      const std::vector<Eigen::Matrix3d>& rotations,
                      int num_threads = 1);
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief ZYZ Euler angles: R = Rz(alpha) Ry(beta) Rz(gamma), beta in [0, pi]. */
 struct EulerZYZ {
@@ -37,4 +37,4 @@ EulerZYZ gridEuler(const So3GridIndex& index, int output_bandwidth);
 /** \brief Geodesic angle between two rotations, in radians. */
 double rotationDistance(const Eigen::Matrix3d& A, const Eigen::Matrix3d& B);
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -10,7 +10,7 @@
 
 #include <limits>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief Result of the sub-grid refinement of a correlation peak. */
 struct RefinedRotation {
@@ -60,4 +60,4 @@ refineRotation(const SphericalSpectrum& target, const SphericalSpectrum& source,
                const SphericalSupport* source_support = nullptr,
                double max_distance = std::numeric_limits<double>::infinity());
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 // ---------------------------------------------------------------------------------------
 // Aligned storage. FFTW's new-array execute functions need arrays with the same SIMD
@@ -346,4 +346,4 @@ correlateSpatial(const SpatialSpectrum& target, const SpatialSpectrum& source,
                  SpatialPeakRefinement refinement = SpatialPeakRefinement::kGaussian,
                  int num_threads = 1);
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -11,7 +11,7 @@
 
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief Fusion of K channel spectra (range, intensity, reflectivity, ...) of ONE
  * cloud into a single spectrum, so that one correlation serves all channels (PHASER
@@ -150,4 +150,4 @@ SpatialSpectrum fuseSpatial(const std::vector<SpatialSpectrum>& channels,
  *  \throws InvalidArgument if clamp <= 0 or is not finite */
 Eigen::VectorXd normalizeChannel(const Eigen::VectorXd& values, double clamp = 3.0);
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -8,7 +8,7 @@
 
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief Driscoll-Healy sampling of the sphere at bandwidth B (2B x 2B cells).
  *
@@ -42,4 +42,4 @@ Eigen::Vector3d sampleDirection(int ring, int column, int bandwidth);
  * not be normalized). Returns -1 for the zero vector or non-finite input. */
 int cellIndex(const Eigen::Vector3d& p, int bandwidth);
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

@@ -9,7 +9,7 @@
 #include <memory>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief Spherical harmonic coefficients of a real function at bandwidth B:
  *  F(l, m) = f_l^m for 0 <= m <= l < B (the upper triangle is unused and zero).
@@ -58,4 +58,4 @@ private:
   std::unique_ptr<Plans> plans_;
 };
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

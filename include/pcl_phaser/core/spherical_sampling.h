@@ -8,7 +8,7 @@
 
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief A cloud seen as a function on the sphere, on the Driscoll-Healy grid. */
 struct SphericalSamples {
@@ -50,4 +50,4 @@ std::vector<int> sphereCells(const Eigen::Matrix3Xd& points, int bandwidth,
 SphericalSamples binOnSphere(const std::vector<int>& cells,
                              const Eigen::VectorXd& values, int bandwidth);
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

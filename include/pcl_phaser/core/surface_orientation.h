@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief Planar patches of a cloud: per voxel with enough points, the normal of the
  *  points' covariance (its smallest eigenvector, turned towards the viewpoint) and a
@@ -62,4 +62,4 @@ Eigen::Matrix3Xd patchNormalsAt(const SurfacePatches& patches,
 Eigen::VectorXd orientationWeights(const SurfacePatches& patches,
                                    const Eigen::Matrix3Xd& samples);
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

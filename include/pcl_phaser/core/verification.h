@@ -10,7 +10,7 @@
 
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief How well a pose puts the source on the target, measured on evenly spaced
  *  source samples against the target points (PointIndex of radius r). */
@@ -88,4 +88,4 @@ PoseVerification verifyPose(const PointIndex& target,
                             const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
                             int num_threads = 1, const FreeSpace* free_space = nullptr);
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

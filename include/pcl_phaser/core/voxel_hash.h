@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief Points grouped by the cubic voxel that holds them: the groups in increasing
  *  order of their voxel key, and within a group the points in input order, so every
@@ -76,4 +76,4 @@ private:
   std::unordered_map<std::int64_t, std::pair<Eigen::Index, Eigen::Index>> cells_;
 };
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

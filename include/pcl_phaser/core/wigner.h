@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-namespace pcl_phaser {
+namespace pcl::phaser {
 
 /** \brief log(i!) for i = 0..n (no std::lgamma: it may write the global signgam). */
 std::vector<double> logFactorials(int n);
@@ -81,4 +81,4 @@ std::shared_ptr<const WignerStepTable> wignerStepTable(int bandwidth);
  * and tests; the correlation runs its own vectorized loop. */
 std::vector<double> wignerSmallD(int mp, int m, int bandwidth, double beta);
 
-} // namespace pcl_phaser
+} // namespace pcl::phaser

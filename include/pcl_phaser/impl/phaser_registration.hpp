@@ -14,15 +14,13 @@
 
 namespace pcl {
 
-namespace phaser_detail {
-
-using namespace pcl::phaser;
+namespace phaser::detail {
 
 /** \brief Appends the value of channel \a C of \a p to \a values[k] when the mask has
  * it. */
 template <Channel C, typename PointT>
 void appendChannel(const PointT& p, std::uint32_t mask,
-                   pcl_phaser::ChannelValues& values, std::size_t& k, Eigen::Index row)
+                   pcl::phaser::ChannelValues& values, std::size_t& k, Eigen::Index row)
 {
   if constexpr ((availableChannels<PointT>() & C) != 0) {
     if (mask & C)
@@ -34,7 +32,7 @@ void appendChannel(const PointT& p, std::uint32_t mask,
  *  doubles, and the values of the channels in \a mask (in Channel order). */
 template <typename PointT, typename Indices>
 Eigen::Matrix3Xd extractCloud(const PointCloud<PointT>& cloud, const Indices* indices,
-                              std::uint32_t mask, pcl_phaser::ChannelValues& values)
+                              std::uint32_t mask, pcl::phaser::ChannelValues& values)
 {
   const std::size_t n = indices ? indices->size() : cloud.size();
   mask &= availableChannels<PointT>() & ~static_cast<std::uint32_t>(CHANNEL_RANGE);
@@ -70,7 +68,7 @@ void transformWhole(const PointCloud<PointT>& in, PointCloud<PointT>& out,
     transformPointCloud(in, out, T);
 }
 
-} // namespace phaser_detail
+} // namespace phaser::detail
 
 template <typename PointSource, typename PointTarget, typename Scalar>
 void PhaserRegistration<PointSource, PointTarget, Scalar>::setInputSource(
@@ -119,17 +117,17 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
 {
   rotation_uncertainty_.reset();
   if (!target_model_) {
-    pcl_phaser::ChannelValues channels;
-    Eigen::Matrix3Xd points = phaser_detail::extractCloud(
+    pcl::phaser::ChannelValues channels;
+    Eigen::Matrix3Xd points = phaser::detail::extractCloud(
         *target_, static_cast<const Indices*>(nullptr), getFusedChannels(), channels);
-    target_model_ = std::make_shared<const pcl_phaser::Target>(std::move(points),
-                                                               std::move(channels));
+    target_model_ = std::make_shared<const pcl::phaser::Target>(std::move(points),
+                                                                std::move(channels));
   }
-  pcl_phaser::SourceCloud source;
-  source.points = phaser_detail::extractCloud(*input_, indices_.get(),
-                                              getFusedChannels(), source.channels);
-  result_ =
-      pcl_phaser::align(*target_model_, source, guess.template cast<double>(), params_);
+  pcl::phaser::SourceCloud source;
+  source.points = phaser::detail::extractCloud(*input_, indices_.get(),
+                                               getFusedChannels(), source.channels);
+  result_ = pcl::phaser::align(*target_model_, source, guess.template cast<double>(),
+                               params_);
   if (!result_.error.empty())
     PCL_ERROR("[pcl::%s::computeTransformation] %s\n", getClassName().c_str(),
               result_.error.c_str());
@@ -141,16 +139,16 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
               result_.translation_score);
   converged_ = result_.converged;
   final_transformation_ = transformation_ = result_.transformation.cast<Scalar>();
-  phaser_detail::transformWhole(*input_, output, final_transformation_);
+  phaser::detail::transformWhole(*input_, output, final_transformation_);
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar>
-const pcl_phaser::BinghamDistribution&
+const pcl::phaser::BinghamDistribution&
 PhaserRegistration<PointSource, PointTarget, Scalar>::getRotationUncertainty() const
 {
   if (!rotation_uncertainty_)
-    rotation_uncertainty_ = std::make_shared<pcl_phaser::BinghamDistribution>(
-        pcl_phaser::rotationUncertainty(result_));
+    rotation_uncertainty_ = std::make_shared<pcl::phaser::BinghamDistribution>(
+        pcl::phaser::rotationUncertainty(result_));
   return *rotation_uncertainty_;
 }
 
@@ -160,8 +158,8 @@ PhaserRegistration<PointSource, PointTarget, Scalar>::getCovariance() const
 {
   if (!converged_) // e.g. a new source since the last align()
     return Eigen::Matrix<double, 6, 6>::Zero();
-  return pcl_phaser::poseCovariance(result_, getRotationUncertainty(),
-                                    params_.bandwidth);
+  return pcl::phaser::poseCovariance(result_, getRotationUncertainty(),
+                                     params_.bandwidth);
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar>
