@@ -32,6 +32,20 @@ struct MethodSettings {
   bool normalized_refinement = true; ///< pcl_phaser's setNormalizedRefinement
 };
 
+/** \brief pcl_phaser's verification of its final pose (NaN for other methods): what
+ * hasConverged() decided on, and the best verification among the pass-1 hypotheses that
+ * end far (over 10 deg or 2 m) from the final pose. */
+struct VerificationFigures {
+  double inliers = std::numeric_limits<double>::quiet_NaN(); ///< inlier_fraction
+  double free_space =
+      std::numeric_limits<double>::quiet_NaN(); ///< free_space_violation
+  double reverse_free_space = std::numeric_limits<double>::quiet_NaN();
+  double constraint = std::numeric_limits<double>::quiet_NaN();
+  /** score - 3 max(violations) of the final pose, and of the best distant hypothesis */
+  double rank = std::numeric_limits<double>::quiet_NaN();
+  double distant_rank = std::numeric_limits<double>::quiet_NaN();
+};
+
 /** \brief One registration's outcome (T maps the source into the target frame). */
 struct MethodResult {
   Eigen::Matrix4d transformation = Eigen::Matrix4d::Identity();
@@ -42,6 +56,7 @@ struct MethodResult {
   double score = std::numeric_limits<double>::quiet_NaN();
   /** pcl_phaser's normalized overlap of the aligned grids (NaN for other methods) */
   double overlap = std::numeric_limits<double>::quiet_NaN();
+  VerificationFigures verification;
   bool has_covariance = false;
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
 };

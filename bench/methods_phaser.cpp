@@ -8,10 +8,40 @@
 
 #include <pcl/common/io.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace pcl::phaser {
 namespace bench {
 
 namespace {
+
+double rank(double score, double free_space, double reverse_free_space)
+{
+  return score - 3.0 * std::max(free_space, reverse_free_space);
+}
+
+VerificationFigures verificationOf(const PhaserResult& r)
+{
+  VerificationFigures v;
+  v.inliers = r.inlier_fraction;
+  v.free_space = r.free_space_violation;
+  v.reverse_free_space = r.reverse_free_space_violation;
+  v.constraint = r.constraint;
+  v.rank = rank(r.verification_score, v.free_space, v.reverse_free_space);
+  for (const RotationHypothesis& h : r.hypotheses) {
+    const Eigen::Matrix4d d = r.transformation.inverse() * h.transformation;
+    const double angle =
+        Eigen::AngleAxisd(Eigen::Matrix3d(d.topLeftCorner<3, 3>())).angle();
+    if (angle < 10.0 * M_PI / 180.0 && d.topRightCorner<3, 1>().norm() < 2.0)
+      continue;
+    const double k = rank(h.verification_score, h.free_space_violation,
+                          h.reverse_free_space_violation);
+    if (!(k <= v.distant_rank))
+      v.distant_rank = k;
+  }
+  return v;
+}
 
 template <typename PointP>
 MethodResult align(const typename pcl::PointCloud<PointP>::ConstPtr& source,
@@ -38,6 +68,7 @@ MethodResult align(const typename pcl::PointCloud<PointP>::ConstPtr& source,
   result.converged = phaser.hasConverged();
   result.score = phaser.getResult().translation_score;
   result.overlap = phaser.getResult().normalized_overlap;
+  result.verification = verificationOf(phaser.getResult());
   if (result.converged) {
     result.covariance = phaser.getCovariance();
     result.has_covariance = true;

@@ -274,6 +274,7 @@ private:
     trial.success = trial.rre_deg < o_.rre_threshold && trial.rte_m < rte_threshold;
     trial.score = r.score;
     trial.overlap = r.overlap;
+    trial.verification = r.verification;
     if (r.has_covariance) {
       // The error as getCovariance() orders it: omega = Log(R_true R_est^T), nu =
       // t_true

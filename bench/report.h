@@ -7,6 +7,8 @@
  */
 #pragma once
 
+#include "methods.h"
+
 #include <ostream>
 #include <string>
 #include <vector>
@@ -30,8 +32,9 @@ struct Trial {
   double nees = -1.0;       ///< 6-D NEES under the method's covariance, -1 without one
   double nees_rot = -1.0;   ///< 3-D NEES of the rotation error under its own block
   double nees_trans = -1.0; ///< 3-D NEES of the translation error under its own block
-  double sigma_rot_deg = 0.0; ///< sqrt(trace) of the covariance's rotation block
-  double sigma_trans_m = 0.0; ///< sqrt(trace) of its translation block
+  double sigma_rot_deg = 0.0;       ///< sqrt(trace) of the covariance's rotation block
+  double sigma_trans_m = 0.0;       ///< sqrt(trace) of its translation block
+  VerificationFigures verification; ///< pcl_phaser's (NaN for others)
 };
 
 /** \brief Writes every trial as a CSV row (with a header). */

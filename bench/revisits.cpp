@@ -62,6 +62,7 @@ struct RevisitTrial {
   RevisitPair pair;
   double rre = 0.0, rte = 0.0, ms = 0.0, score = 0.0, overlap_est = 0.0;
   bool converged = false;
+  VerificationFigures verification; ///< pcl_phaser's (NaN for others)
 
   bool successA() const { return rre < kRreThreshold && rte < kRteThresholdA; }
   bool successB() const { return rre < kRreThreshold && rte < kRteThresholdB; }
@@ -178,10 +179,15 @@ bool loadPairs(const RevisitOptions& o, const std::string& pairs_file,
 void writeCsvRow(std::ostream& out, const RevisitTrial& t)
 {
   char line[512];
-  std::snprintf(line, sizeof(line), "%s,%s,%s,%g,%g,%g,%.6f,%.6f,%d,%.3f,%.6g,%.6g\n",
-                t.method.c_str(), t.pair.source.c_str(), t.pair.target.c_str(),
-                t.pair.dist, t.pair.rel_rot, t.pair.overlap, t.rre, t.rte,
-                t.converged ? 1 : 0, t.ms, t.score, t.overlap_est);
+  const VerificationFigures& v = t.verification;
+  std::snprintf(
+      line, sizeof(line),
+      "%s,%s,%s,%g,%g,%g,%.6f,%.6f,%d,%.3f,%.6g,%.6g,%.4g,%.4g,%.4g,%.4g,%.4g,"
+      "%.4g\n",
+      t.method.c_str(), t.pair.source.c_str(), t.pair.target.c_str(), t.pair.dist,
+      t.pair.rel_rot, t.pair.overlap, t.rre, t.rte, t.converged ? 1 : 0, t.ms, t.score,
+      t.overlap_est, v.inliers, v.free_space, v.reverse_free_space, v.constraint,
+      v.rank, v.distant_rank);
   out << line << std::flush; // a long run can be read while it goes
 }
 
@@ -219,6 +225,7 @@ std::vector<RevisitTrial> runTrials(const RevisitOptions& o, const std::string& 
       t.ms = r.ms;
       t.score = r.score;
       t.overlap_est = r.overlap;
+      t.verification = r.verification;
       t.converged = r.converged;
       std::fprintf(stderr,
                    "[%zu/%zu] %s -> %s (%.2f m) %-12s RRE %7.2f deg  RTE %7.3f m  "
@@ -425,7 +432,8 @@ int runRevisitsStudy(int argc, char** argv)
   if (!o.csv.empty()) {
     csv = std::make_unique<std::ofstream>(o.csv);
     *csv << "method,source,target,dist,rel_rot,overlap,rre,rte,converged,ms,score,"
-            "overlap_est\n";
+            "overlap_est,inliers,free_space,reverse_free_space,constraint,rank,"
+            "distant_rank\n";
   }
   const std::vector<RevisitTrial> trials = runTrials(o, folder, pairs, csv.get());
   std::ofstream md_file;

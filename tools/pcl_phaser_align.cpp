@@ -249,17 +249,18 @@ void printReport(const Result& res)
 {
   const pcl::phaser::PhaserResult& e = res.estimate;
   printStage("PHASER", res.global);
-  print_info("    rotation score %.4f, translation score %.4f, passes %d\n"
-             "    verification: inliers %.3f, free-space violations %.3f, constraint "
-             "%.3f (%d samples): %s\n"
-             "    stages (ms): target %.1f, sampling %.1f, sht %.1f, so3 %.1f, "
-             "refinement %.1f, translation %.1f, orientation %.1f, verification %.1f; "
-             "total %.1f\n",
-             e.rotation_score, e.translation_score, e.passes, e.inlier_fraction,
-             e.free_space_violation, e.constraint, e.verification_samples,
-             e.verified ? "verified" : "NOT verified", e.target_ms, e.sampling_ms,
-             e.sht_ms, e.so3_ms, e.refinement_ms, e.translation_ms, e.orientation_ms,
-             e.verification_ms, res.global.time_ms);
+  print_info(
+      "    rotation score %.4f, translation score %.4f, passes %d\n"
+      "    verification: inliers %.3f, free-space violations %.3f / %.3f, constraint "
+      "%.3f (%d samples): %s\n"
+      "    stages (ms): target %.1f, sampling %.1f, sht %.1f, so3 %.1f, "
+      "refinement %.1f, translation %.1f, orientation %.1f, verification %.1f; "
+      "total %.1f\n",
+      e.rotation_score, e.translation_score, e.passes, e.inlier_fraction,
+      e.free_space_violation, e.reverse_free_space_violation, e.constraint,
+      e.verification_samples, e.verified ? "verified" : "NOT verified", e.target_ms,
+      e.sampling_ms, e.sht_ms, e.so3_ms, e.refinement_ms, e.translation_ms,
+      e.orientation_ms, e.verification_ms, res.global.time_ms);
   if (res.icp.ran)
     printStage("After ICP", res.icp);
 }
@@ -283,6 +284,8 @@ std::string toJson(const Result& res, const Options& opt, int code, double total
         .add("translation_score", json::number(e.translation_score))
         .add("inlier_fraction", json::number(e.inlier_fraction))
         .add("free_space_violation", json::number(e.free_space_violation))
+        .add("reverse_free_space_violation",
+             json::number(e.reverse_free_space_violation))
         .add("constraint", json::number(e.constraint))
         .add("verified", json::boolean(e.verified))
         .add("passes", std::to_string(e.passes))

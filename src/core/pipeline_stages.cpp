@@ -209,6 +209,7 @@ Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_
     h.inlier_fraction = v[k].inlier_fraction;
     h.verification_score = v[k].score;
     h.free_space_violation = v[k].free_space_violation;
+    h.reverse_free_space_violation = v[k].reverse_free_space_violation;
     verifiable = verifiable || v[k].inlier_fraction >= kMinRankingInliers;
   }
   verifiable = verifiable && canVerify(s);
@@ -330,13 +331,15 @@ void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
   e.translation = pose.t;
   e.inlier_fraction = pose.v.inlier_fraction;
   e.free_space_violation = pose.v.free_space_violation;
+  e.reverse_free_space_violation = pose.v.reverse_free_space_violation;
   e.constraint = pose.v.constraint;
   e.verification_samples = static_cast<int>(s.samples.points.cols());
   e.verified = e.verification_samples >= kMinVerificationSamples &&
                (!p.sensor_centered ||
                 (pose.verifiable && e.inlier_fraction >= p.min_inlier_fraction &&
                  e.constraint >= p.min_constraint &&
-                 e.free_space_violation <= p.max_free_space_violation));
+                 std::max(e.free_space_violation, e.reverse_free_space_violation) <=
+                     p.max_free_space_violation));
   e.verification_score = pose.v.score;
 }
 

@@ -85,8 +85,9 @@ struct PhaserParameters {
   /** \brief Verification: least (weighted) share of the source samples with a target
    *  point within the verification radius whose normal agrees, in [0, 1]. */
   double min_inlier_fraction = 0.2;
-  /** \brief Verification about sensor origins: largest share of samples in space the
-   *  target saw through, in [0, 1]. */
+  /** \brief Verification about sensor origins: largest share of source samples in
+   *  space the target's sensor saw through, and of target samples in space the
+   *  source's sensor saw through, in [0, 1]. */
   double max_free_space_violation = 0.02;
   /** \brief Verification: least PoseVerification::constraint (how well the matched
    *  samples pin the translation down in every direction), in [0, 1/3]. */
@@ -123,6 +124,8 @@ struct RotationHypothesis {
   double inlier_fraction = 0.0;  ///< PoseVerification::inlier_fraction of the pose
   double verification_score = 0.0;   ///< PoseVerification::score of the pose
   double free_space_violation = 0.0; ///< PoseVerification::free_space_violation
+  /** \brief PoseVerification::reverse_free_space_violation of the pose. */
+  double reverse_free_space_violation = 0.0;
 };
 
 /** \brief What one align() found. On failure (error not empty) transformation is the
@@ -159,11 +162,13 @@ struct PhaserResult {
   double inlier_fraction = 0.0;
   double verification_score = 0.0;   ///< the share weighted by closeness, in [0, 1]
   double free_space_violation = 0.0; ///< share in space the target saw through, [0, 1]
-  double constraint = 0.0;           ///< PoseVerification::constraint of the final pose
-  double verification_radius = 0.0;  ///< meters: half the coarse voxel
-  int verification_samples = 0;      ///< source samples verified
-  /** \brief Enough samples and, about sensor origins, inlier_fraction,
-   *  constraint and free_space_violation within PhaserParameters' limits. */
+  /** \brief Share of target samples in space the source saw through, [0, 1]. */
+  double reverse_free_space_violation = 0.0;
+  double constraint = 0.0;          ///< PoseVerification::constraint of the final pose
+  double verification_radius = 0.0; ///< meters: half the coarse voxel
+  int verification_samples = 0;     ///< source samples verified
+  /** \brief Enough samples and, about sensor origins, inlier_fraction, constraint
+   *  and both free-space violations within PhaserParameters' limits. */
   bool verified = false;
   /** \brief Grid rotations around the last rotation peak, moved onto rotation
    *  (quaternions w, x, y, z), and their weights (correlation above the block's

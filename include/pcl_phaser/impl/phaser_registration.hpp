@@ -133,10 +133,11 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
               result_.error.c_str());
   else if (!result_.converged)
     PCL_DEBUG("[pcl::%s::computeTransformation] not verified: inlier fraction %g, "
-              "free-space violation %g, %d samples, peak score %g: not converged\n",
+              "free-space violations %g / %g (source / target samples), %d samples, "
+              "peak score %g: not converged\n",
               getClassName().c_str(), result_.inlier_fraction,
-              result_.free_space_violation, result_.verification_samples,
-              result_.translation_score);
+              result_.free_space_violation, result_.reverse_free_space_violation,
+              result_.verification_samples, result_.translation_score);
   converged_ = result_.converged;
   final_transformation_ = transformation_ = result_.transformation.cast<Scalar>();
   phaser::detail::transformWhole(*input_, output, final_transformation_);
