@@ -56,6 +56,12 @@ Errors errors(const Eigen::Matrix4d& estimate, const Eigen::Matrix4d& truth)
           (estimate.topRightCorner<3, 1>() - truth.topRightCorner<3, 1>()).norm()};
 }
 
+/** A balm_handheld scan, non-finite points removed. */
+Cloud::Ptr scan(const std::string& name)
+{
+  return pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + name);
+}
+
 /** Registers with defaults; \a why gets the verification figures. */
 Eigen::Matrix4d align(const Cloud::ConstPtr& source, const Cloud::ConstPtr& target,
                       bool& converged, std::string* why = nullptr)
@@ -88,8 +94,8 @@ TEST(Revisits, PairsMetersApartRegisterAndConverge)
       {"full84.pcd", "full162.pcd"},  // 12.4 m, 83 deg
       {"full54.pcd", "full156.pcd"}}; // 20.8 m, 92 deg
   for (const auto& [s, t] : pairs) {
-    const auto source = pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + s);
-    const auto target = pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + t);
+    const auto source = scan(s);
+    const auto target = scan(t);
     bool converged = false;
     const Errors e = errors(align(source, target, converged), referencePose(s, t));
     EXPECT_LT(e.rotation_deg, 5.0) << s << " -> " << t;
@@ -101,10 +107,8 @@ TEST(Revisits, PairsMetersApartRegisterAndConverge)
 TEST(Revisits, SwappedInputsGiveTheInverse)
 {
   PCL_PHASER_REQUIRE_DATA(kDir + "pairs.txt");
-  const auto a =
-      pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + "full120.pcd");
-  const auto b =
-      pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + "full132.pcd");
+  const auto a = scan("full120.pcd");
+  const auto b = scan("full132.pcd");
   const Eigen::Matrix4d truth = referencePose("full120.pcd", "full132.pcd");
   bool forward_converged = false, backward_converged = false;
   const Errors forward = errors(align(a, b, forward_converged), truth);
@@ -123,8 +127,7 @@ TEST(Revisits, UnrelatedPlacesDoNotConverge)
 {
   PCL_PHASER_REQUIRE_DATA(kDir + "full18.pcd");
   PCL_PHASER_REQUIRE_DATA("lidar/kitti_raw_hdl64/0000000000.bin");
-  const auto balm =
-      pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + "full18.pcd");
+  const auto balm = scan("full18.pcd");
   const auto kitti = pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(
       "lidar/kitti_raw_hdl64/0000000000.bin");
   bool converged = true;
@@ -143,14 +146,11 @@ TEST(Revisits, UnrelatedPlacesDoNotConverge)
 TEST(Revisits, ConvergedMeansRightOnASymmetricScene)
 {
   PCL_PHASER_REQUIRE_DATA(kDir + "full48.pcd");
-  const auto source =
-      pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + "full48.pcd");
-  const auto target =
-      pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + "full90.pcd");
   bool converged = true;
   std::string why;
-  const Errors e = errors(align(source, target, converged, &why),
-                          referencePose("full48.pcd", "full90.pcd"));
+  const Errors e =
+      errors(align(scan("full48.pcd"), scan("full90.pcd"), converged, &why),
+             referencePose("full48.pcd", "full90.pcd"));
   if (converged) {
     EXPECT_LT(e.rotation_deg, 5.0) << why;
     EXPECT_LT(e.translation_m, 2.0) << why;
