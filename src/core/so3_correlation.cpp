@@ -145,6 +145,86 @@ evaluateAccumulate(const WignerStepTable& steps, int L, int B, int K, int P, int
   }
 }
 
+/** Where So3Correlator::correlate writes: \a rows beta slices of N x nh complex values
+ *  (N = 2 Bo, nh = Bo + 1) at \a T; the Wigner recurrence runs over the beta rows
+ *  j < J; B is the input bandwidth. */
+struct SliceLayout {
+  int B = 0, N = 0, J = 0, rows = 0;
+  std::size_t nh = 0, slice = 0;
+  Complex* T = nullptr;
+};
+
+/** The So3Correlator tables the Wigner stage reads (beta_j for j < Bo). */
+struct WignerTables {
+  const WignerStepTable& steps;
+  const std::vector<double>& log_factorials;
+  const std::vector<double>& cos_beta;
+  const std::vector<double>& log_cos_half;
+  const std::vector<double>& log_sin_half;
+};
+
+/** Zeroes what the Wigner stage does not write: orders |m'| >= B (rows p in [B, N-B])
+ *  and m >= B (columns q in [B, Bo]), Nyquist included. A work-sharing loop: call it
+ *  from inside a parallel region. */
+void zeroUnwrittenOrders(const SliceLayout& g)
+{
+#pragma omp for schedule(static)
+  for (int s = 0; s < g.rows; ++s)
+    for (int p = 0; p < g.N; ++p) {
+      Complex* row = g.T + s * g.slice + p * g.nh;
+      const bool unused_row = p >= g.B && p <= g.N - g.B;
+      std::fill(row + (unused_row ? 0 : g.B), row + g.nh, Complex(0.0));
+    }
+}
+
+/** The Wigner stage for order m and every m': the two half-plane sums over l, written
+ *  (conjugated) into column m of rows m' and -m' of every beta slice. */
+void wignerOrder(const SphericalSpectrum& target, const SphericalSpectrum& source,
+                 int m, const WignerTables& tables, const SliceLayout& g,
+                 WignerScratch& w)
+{
+  const int B = g.B, N = g.N, J = g.J;
+  for (int mp = -(B - 1); mp < B; ++mp) {
+    const int L = std::max(std::abs(mp), m);
+    for (int l = L; l < B; ++l) {
+      const Complex h = source(l, m);
+      w.c1[l] = std::conj(coefficient(target, l, mp)) * h;
+      const Complex c2 = std::conj(coefficient(target, l, -mp)) * h;
+      w.c2[l] = ((l - m) % 2) ? -c2 : c2;
+    }
+    const WignerStart start = wignerStart(mp, m, tables.log_factorials);
+    for (int j = 0; j < J; ++j)
+      w.d0[j] = start.value(tables.log_cos_half[j], tables.log_sin_half[j]);
+    wignerAccumulate(tables.steps, L, B, J, mp, m, tables.cos_beta.data(),
+                     reinterpret_cast<const double*>(w.c1.data()),
+                     reinterpret_cast<const double*>(w.c2.data()), w.d0.data(),
+                     w.d1.data(), w.d2.data(), w.acc1_re.data(), w.acc1_im.data(),
+                     w.acc2_re.data(), w.acc2_im.data());
+    const double* a1r = w.acc1_re.data();
+    const double* a1i = w.acc1_im.data();
+    const double* a2r = w.acc2_re.data();
+    const double* a2i = w.acc2_im.data();
+    // c2r computes sum T e^{+i...}: feed conj(S) to get the e^{-i...} sum of the spec.
+    const int p1 = wrap(mp, N), p2 = wrap(-mp, N);
+    for (int j = 0; j < J; ++j) {
+      g.T[j * g.slice + p1 * g.nh + m] = Complex(a1r[j], -a1i[j]);
+      if (N - 1 - j < g.rows)
+        g.T[(N - 1 - j) * g.slice + p2 * g.nh + m] = Complex(a2r[j], -a2i[j]);
+    }
+  }
+}
+
+/** One in-place N x N c2r FFT per beta slice. A work-sharing loop: call it from inside
+ *  a parallel region. */
+void inverseSlices(const SliceLayout& g, fftw_plan slice_c2r)
+{
+#pragma omp for schedule(static)
+  for (int s = 0; s < g.rows; ++s) {
+    fftw_complex* in = reinterpret_cast<fftw_complex*>(g.T + s * g.slice);
+    fftw_execute_dft_c2r(slice_c2r, in, reinterpret_cast<double*>(in));
+  }
+}
+
 } // namespace
 
 // ---------------------------------------------------------------------------------------
@@ -304,78 +384,42 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
   if (beta_rows < 0)
     throw InvalidArgument("So3Correlator::correlate: beta_rows must be >= 0");
   const int rows = beta_rows == 0 ? N : std::min(beta_rows, N);
-  // beta_j for j < Bo; the mirrored half (rows N-1-j) comes from d(pi - beta). With a
-  // tilt limit the recurrence runs over the rows j < min(rows, Bo) and the mirrored
-  // rows it yields are kept only when they are below \a rows too.
-  const int J = std::min(Bo, rows);
-  const std::size_t nh = Bo + 1;
-  const std::size_t slice = static_cast<std::size_t>(N) * nh;
   checkSpectrum(target, B, "target");
   checkSpectrum(source, B, "source");
   num_threads = std::max(1, num_threads);
 
+  // beta_j for j < Bo; the mirrored half (rows N-1-j) comes from d(pi - beta). With a
+  // tilt limit the recurrence runs over the rows j < min(rows, Bo) and the mirrored
+  // rows it yields are kept only when they are below \a rows too.
+  SliceLayout layout;
+  layout.B = B;
+  layout.N = N;
+  layout.J = std::min(Bo, rows);
+  layout.rows = rows;
+  layout.nh = Bo + 1;
+  layout.slice = static_cast<std::size_t>(N) * layout.nh;
+
   So3CorrelationGrid grid;
   grid.output_bandwidth_ = Bo;
   grid.beta_rows_ = rows;
-  grid.row_stride_ = 2 * nh;
+  grid.row_stride_ = 2 * layout.nh;
   // Only the computed rows are stored (operator() gives -infinity beyond them).
-  grid.data_ = static_cast<double*>(fftw_malloc(sizeof(fftw_complex) * slice * rows));
+  grid.data_ =
+      static_cast<double*>(fftw_malloc(sizeof(fftw_complex) * layout.slice * rows));
   if (!grid.data_)
     throw std::bad_alloc();
-  Complex* T = reinterpret_cast<Complex*>(grid.data_);
+  layout.T = reinterpret_cast<Complex*>(grid.data_);
 
+  const WignerTables tables{*steps_, log_factorials_, cos_beta_, log_cos_half_,
+                            log_sin_half_};
 #pragma omp parallel num_threads(num_threads)
   {
-    // Zero what the Wigner stage does not write: orders |m'| >= B (rows p in [B, N-B])
-    // and m >= B (columns q in [B, Bo]), Nyquist included.
-#pragma omp for schedule(static)
-    for (int s = 0; s < rows; ++s)
-      for (int p = 0; p < N; ++p) {
-        Complex* row = T + s * slice + p * nh;
-        const bool unused_row = p >= B && p <= N - B;
-        std::fill(row + (unused_row ? 0 : B), row + nh, Complex(0.0));
-      }
-
-    WignerScratch w(J, B);
-    const double* cb = cos_beta_.data();
+    zeroUnwrittenOrders(layout);
+    WignerScratch w(layout.J, B);
 #pragma omp for schedule(dynamic, 1)
-    for (int m = 0; m < B; ++m) {
-      for (int mp = -(B - 1); mp < B; ++mp) {
-        const int L = std::max(std::abs(mp), m);
-        for (int l = L; l < B; ++l) {
-          const Complex h = source(l, m);
-          w.c1[l] = std::conj(coefficient(target, l, mp)) * h;
-          const Complex c2 = std::conj(coefficient(target, l, -mp)) * h;
-          w.c2[l] = ((l - m) % 2) ? -c2 : c2;
-        }
-        const WignerStart start = wignerStart(mp, m, log_factorials_);
-        for (int j = 0; j < J; ++j)
-          w.d0[j] = start.value(log_cos_half_[j], log_sin_half_[j]);
-        wignerAccumulate(*steps_, L, B, J, mp, m, cb,
-                         reinterpret_cast<const double*>(w.c1.data()),
-                         reinterpret_cast<const double*>(w.c2.data()), w.d0.data(),
-                         w.d1.data(), w.d2.data(), w.acc1_re.data(), w.acc1_im.data(),
-                         w.acc2_re.data(), w.acc2_im.data());
-        const double* a1r = w.acc1_re.data();
-        const double* a1i = w.acc1_im.data();
-        const double* a2r = w.acc2_re.data();
-        const double* a2i = w.acc2_im.data();
-        // c2r computes sum T e^{+i...}: feed conj(S) to get the e^{-i...} sum of the
-        // spec.
-        const int p1 = wrap(mp, N), p2 = wrap(-mp, N);
-        for (int j = 0; j < J; ++j) {
-          T[j * slice + p1 * nh + m] = Complex(a1r[j], -a1i[j]);
-          if (N - 1 - j < rows)
-            T[(N - 1 - j) * slice + p2 * nh + m] = Complex(a2r[j], -a2i[j]);
-        }
-      }
-    }
-
-#pragma omp for schedule(static)
-    for (int s = 0; s < rows; ++s) {
-      fftw_complex* in = reinterpret_cast<fftw_complex*>(T + s * slice);
-      fftw_execute_dft_c2r(plan_->slice_c2r.get(), in, reinterpret_cast<double*>(in));
-    }
+    for (int m = 0; m < B; ++m)
+      wignerOrder(target, source, m, tables, layout, w);
+    inverseSlices(layout, plan_->slice_c2r.get());
   }
   return grid;
 }
