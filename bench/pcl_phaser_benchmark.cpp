@@ -104,16 +104,6 @@ struct Options {
   std::string csv, markdown, plots;
 };
 
-std::vector<std::string> split(const std::string& text)
-{
-  std::vector<std::string> parts;
-  std::stringstream in(text);
-  for (std::string part; std::getline(in, part, ',');)
-    if (!part.empty())
-      parts.push_back(part);
-  return parts;
-}
-
 void printHelp(const char* program)
 {
   console::print_info(
@@ -153,14 +143,14 @@ bool parseOptions(int argc, char** argv, Options& o)
   console::parse_argument(argc, argv, "-study", o.study);
   console::parse_argument(argc, argv, "-data", o.data);
   if (console::parse_argument(argc, argv, "-scans", scans) >= 0)
-    o.scans = split(scans);
+    o.scans = splitList(scans);
   if (console::parse_argument(argc, argv, "-methods", methods) >= 0)
-    o.methods = split(methods);
+    o.methods = splitList(methods);
   if (console::parse_argument(argc, argv, "-conditions", conditions) >= 0)
-    o.conditions = split(conditions);
+    o.conditions = splitList(conditions);
   if (console::parse_argument(argc, argv, "-bandwidths", bandwidths) >= 0) {
     o.bandwidths.clear();
-    for (const std::string& b : split(bandwidths))
+    for (const std::string& b : splitList(bandwidths))
       o.bandwidths.push_back(std::atoi(b.c_str()));
   }
   console::parse_argument(argc, argv, "-poses", o.poses);

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 
 namespace pcl::phaser {
 namespace bench {
@@ -259,6 +260,16 @@ std::string formatValue(const char* fmt, double value)
   char text[64];
   std::snprintf(text, sizeof(text), fmt, value);
   return text;
+}
+
+std::vector<std::string> splitList(const std::string& text)
+{
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  for (std::string part; std::getline(in, part, ',');)
+    if (!part.empty())
+      parts.push_back(part);
+  return parts;
 }
 
 } // namespace bench

@@ -63,5 +63,8 @@ std::vector<std::string> writePlots(const std::string& dir,
 /** \brief \a value printed with the printf format \a fmt, or "-" when not finite. */
 std::string formatValue(const char* fmt, double value);
 
+/** \brief The non-empty parts of a comma-separated option value ("a,,b" -> a, b). */
+std::vector<std::string> splitList(const std::string& text);
+
 } // namespace bench
 } // namespace pcl::phaser

@@ -85,16 +85,6 @@ const std::vector<Bin>& bins()
 }
 constexpr std::size_t kDisjointBins = 4; ///< the first bins() partition the distances
 
-std::vector<std::string> split(const std::string& text)
-{
-  std::vector<std::string> parts;
-  std::stringstream in(text);
-  for (std::string part; std::getline(in, part, ',');)
-    if (!part.empty())
-      parts.push_back(part);
-  return parts;
-}
-
 const Method* findMethod(const std::string& name)
 {
   for (const Method& m : allMethods())
@@ -109,7 +99,7 @@ bool parseRevisitOptions(int argc, char** argv, RevisitOptions& o)
   console::parse_argument(argc, argv, "-data", o.data);
   console::parse_argument(argc, argv, "-pairs-file", o.pairs_file);
   if (console::parse_argument(argc, argv, "-methods", methods) >= 0)
-    o.methods = split(methods);
+    o.methods = splitList(methods);
   console::parse_argument(argc, argv, "-max-pairs", o.max_pairs);
   console::parse_argument(argc, argv, "-derived-pairs", o.derived_pairs);
   console::parse_argument(argc, argv, "-threads", o.threads);

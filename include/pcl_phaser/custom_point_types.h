@@ -10,9 +10,9 @@
  *  Including it makes pcl::PhaserRegistration<MyPoint, MyPoint> usable for any
  * registered point type with x, y, z, whether or not PCL_NO_PRECOMPILE is defined: it
  * brings the template definitions of PhaserRegistration and of the PCL pieces
- * pcl::Registration needs for a new type (PCLBase, the kd-tree search). It costs about
- * 9 s of compile time per translation unit, which is why the main header does not
- * include it.
+ * pcl::Registration needs for a new type (PCLBase, the kd-tree search). Those make
+ * every translation unit that includes it much slower to compile, which is why the
+ * main header does not include it.
  */
 
 #include <pcl_phaser/impl/phaser_registration.hpp>

@@ -120,8 +120,8 @@ public:
   int getBandwidth() const { return params_.bandwidth; }
 
   /** \brief Set the number of worker threads (0..64; 0, the default: one per hardware
-   *  thread); results are
-   *  bit-identical for any count. \param[in] nr_threads number of threads */
+   *  thread); results are bit-identical for any count.
+   *  \param[in] nr_threads number of threads */
   void setNumberOfThreads(unsigned int nr_threads)
   {
     params_.num_threads = static_cast<int>(nr_threads);

@@ -21,7 +21,7 @@ struct ambient;
 
 namespace pcl {
 /** \brief Helpers of pcl::PhaserRegistration that need PCL: the channels a point type
- *  carries and cloud file input/output. */
+ *  carries and their values. */
 namespace phaser {
 
 /** \brief The signal channels PhaserRegistration fuses, as bit flags. */

@@ -145,93 +145,87 @@ evaluateAccumulate(const WignerStepTable& steps, int L, int B, int K, int P, int
   }
 }
 
-} // namespace
+/** Where So3Correlator::correlate writes: \a rows beta slices of N x nh complex values
+ *  (N = 2 Bo, nh = Bo + 1) at \a T; the Wigner recurrence runs over the beta rows
+ *  j < J; B is the input bandwidth. */
+struct SliceLayout {
+  int B = 0, N = 0, J = 0, rows = 0;
+  std::size_t nh = 0, slice = 0;
+  Complex* T = nullptr;
+};
 
-// ---------------------------------------------------------------------------------------
-So3CorrelationGrid::So3CorrelationGrid(So3CorrelationGrid&& o) noexcept
-    : output_bandwidth_(o.output_bandwidth_)
-    , beta_rows_(o.beta_rows_)
-    , row_stride_(o.row_stride_)
-    , data_(o.data_)
-{
-  o.data_ = nullptr;
-  o.output_bandwidth_ = 0;
-  o.beta_rows_ = 0;
-}
+/** The So3Correlator tables the Wigner stage reads (beta_j for j < Bo). */
+struct WignerTables {
+  const WignerStepTable& steps;
+  const std::vector<double>& log_factorials;
+  const std::vector<double>& cos_beta;
+  const std::vector<double>& log_cos_half;
+  const std::vector<double>& log_sin_half;
+};
 
-So3CorrelationGrid& So3CorrelationGrid::operator=(So3CorrelationGrid&& o) noexcept
+/** Zeroes what the Wigner stage does not write: orders |m'| >= B (rows p in [B, N-B])
+ *  and m >= B (columns q in [B, Bo]), Nyquist included. A work-sharing loop: call it
+ *  from inside a parallel region. */
+void zeroUnwrittenOrders(const SliceLayout& g)
 {
-  std::swap(output_bandwidth_, o.output_bandwidth_);
-  std::swap(beta_rows_, o.beta_rows_);
-  std::swap(row_stride_, o.row_stride_);
-  std::swap(data_, o.data_);
-  return *this;
-}
-
-So3CorrelationGrid::~So3CorrelationGrid()
-{
-  if (data_)
-    fftw_free(data_);
-}
-
-So3GridIndex So3CorrelationGrid::argmax(int num_threads) const
-{
-  // The best of each beta row (first on ties), then the rows in order: the first
-  // maximum in flat order whatever the thread count.
-  const int N = size();
-  const int rows = beta_rows_ < N ? std::max(1, beta_rows_ - 1) : N;
-  std::vector<So3GridIndex> best(static_cast<std::size_t>(rows));
-  std::vector<double> best_value(static_cast<std::size_t>(rows),
-                                 -std::numeric_limits<double>::infinity());
-#pragma omp parallel for num_threads(std::max(1, num_threads)) schedule(static)
-  for (int j = 0; j < rows; ++j)
-    for (int a = 0; a < N; ++a) {
-      const double* row = data_ + (static_cast<std::size_t>(j) * N + a) * row_stride_;
-      for (int c = 0; c < N; ++c)
-        if (row[c] > best_value[j]) {
-          best_value[j] = row[c];
-          best[j] = {j, a, c};
-        }
+#pragma omp for schedule(static)
+  for (int s = 0; s < g.rows; ++s)
+    for (int p = 0; p < g.N; ++p) {
+      Complex* row = g.T + s * g.slice + p * g.nh;
+      const bool unused_row = p >= g.B && p <= g.N - g.B;
+      std::fill(row + (unused_row ? 0 : g.B), row + g.nh, Complex(0.0));
     }
-  std::size_t winner = 0;
-  for (std::size_t j = 1; j < best.size(); ++j)
-    if (best_value[j] > best_value[winner])
-      winner = j;
-  return best.empty() ? So3GridIndex{} : best[winner];
 }
 
-So3GridIndex So3CorrelationGrid::argmaxNearIdentity(double radius) const
+/** The Wigner stage for order m and every m': the two half-plane sums over l, written
+ *  (conjugated) into column m of rows m' and -m' of every beta slice. */
+void wignerOrder(const SphericalSpectrum& target, const SphericalSpectrum& source,
+                 int m, const WignerTables& tables, const SliceLayout& g,
+                 WignerScratch& w)
 {
-  // ZYZ angles (alpha, beta, gamma) have the quaternion w = cos(beta / 2) cos((alpha +
-  // gamma) / 2), so the angle to the identity is 2 acos|w|; beta grows with the row.
-  const int N = size();
-  const int Bo = output_bandwidth_;
-  So3GridIndex best{}, nearest{};
-  double best_value = -std::numeric_limits<double>::infinity();
-  double nearest_angle = std::numeric_limits<double>::infinity();
-  for (int j = 0; j < N; ++j) {
-    const double cos_half_beta = std::cos(0.5 * gridEuler({j, 0, 0}, Bo).beta);
-    if (2.0 * std::acos(cos_half_beta) > std::max(radius, nearest_angle))
-      break;
-    for (int a = 0; a < N; ++a) {
-      const double* row = data_ + (static_cast<std::size_t>(j) * N + a) * row_stride_;
-      for (int c = 0; c < N; ++c) {
-        const double half_sum = 0.5 * M_PI * (a + c) / Bo;
-        const double w = std::min(1.0, std::abs(cos_half_beta * std::cos(half_sum)));
-        const double angle = 2.0 * std::acos(w);
-        if (angle < nearest_angle) {
-          nearest_angle = angle;
-          nearest = {j, a, c};
-        }
-        if (angle <= radius && row[c] > best_value) {
-          best_value = row[c];
-          best = {j, a, c};
-        }
-      }
+  const int B = g.B, N = g.N, J = g.J;
+  for (int mp = -(B - 1); mp < B; ++mp) {
+    const int L = std::max(std::abs(mp), m);
+    for (int l = L; l < B; ++l) {
+      const Complex h = source(l, m);
+      w.c1[l] = std::conj(coefficient(target, l, mp)) * h;
+      const Complex c2 = std::conj(coefficient(target, l, -mp)) * h;
+      w.c2[l] = ((l - m) % 2) ? -c2 : c2;
+    }
+    const WignerStart start = wignerStart(mp, m, tables.log_factorials);
+    for (int j = 0; j < J; ++j)
+      w.d0[j] = start.value(tables.log_cos_half[j], tables.log_sin_half[j]);
+    wignerAccumulate(tables.steps, L, B, J, mp, m, tables.cos_beta.data(),
+                     reinterpret_cast<const double*>(w.c1.data()),
+                     reinterpret_cast<const double*>(w.c2.data()), w.d0.data(),
+                     w.d1.data(), w.d2.data(), w.acc1_re.data(), w.acc1_im.data(),
+                     w.acc2_re.data(), w.acc2_im.data());
+    const double* a1r = w.acc1_re.data();
+    const double* a1i = w.acc1_im.data();
+    const double* a2r = w.acc2_re.data();
+    const double* a2i = w.acc2_im.data();
+    // c2r computes sum T e^{+i...}: feed conj(S) to get the e^{-i...} sum of the spec.
+    const int p1 = wrap(mp, N), p2 = wrap(-mp, N);
+    for (int j = 0; j < J; ++j) {
+      g.T[j * g.slice + p1 * g.nh + m] = Complex(a1r[j], -a1i[j]);
+      if (N - 1 - j < g.rows)
+        g.T[(N - 1 - j) * g.slice + p2 * g.nh + m] = Complex(a2r[j], -a2i[j]);
     }
   }
-  return best_value > -std::numeric_limits<double>::infinity() ? best : nearest;
 }
+
+/** One in-place N x N c2r FFT per beta slice. A work-sharing loop: call it from inside
+ *  a parallel region. */
+void inverseSlices(const SliceLayout& g, fftw_plan slice_c2r)
+{
+#pragma omp for schedule(static)
+  for (int s = 0; s < g.rows; ++s) {
+    fftw_complex* in = reinterpret_cast<fftw_complex*>(g.T + s * g.slice);
+    fftw_execute_dft_c2r(slice_c2r, in, reinterpret_cast<double*>(in));
+  }
+}
+
+} // namespace
 
 // ---------------------------------------------------------------------------------------
 struct So3Correlator::Plan {
@@ -304,78 +298,42 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
   if (beta_rows < 0)
     throw InvalidArgument("So3Correlator::correlate: beta_rows must be >= 0");
   const int rows = beta_rows == 0 ? N : std::min(beta_rows, N);
-  // beta_j for j < Bo; the mirrored half (rows N-1-j) comes from d(pi - beta). With a
-  // tilt limit the recurrence runs over the rows j < min(rows, Bo) and the mirrored
-  // rows it yields are kept only when they are below \a rows too.
-  const int J = std::min(Bo, rows);
-  const std::size_t nh = Bo + 1;
-  const std::size_t slice = static_cast<std::size_t>(N) * nh;
   checkSpectrum(target, B, "target");
   checkSpectrum(source, B, "source");
   num_threads = std::max(1, num_threads);
 
+  // beta_j for j < Bo; the mirrored half (rows N-1-j) comes from d(pi - beta). With a
+  // tilt limit the recurrence runs over the rows j < min(rows, Bo) and the mirrored
+  // rows it yields are kept only when they are below \a rows too.
+  SliceLayout layout;
+  layout.B = B;
+  layout.N = N;
+  layout.J = std::min(Bo, rows);
+  layout.rows = rows;
+  layout.nh = Bo + 1;
+  layout.slice = static_cast<std::size_t>(N) * layout.nh;
+
   So3CorrelationGrid grid;
   grid.output_bandwidth_ = Bo;
   grid.beta_rows_ = rows;
-  grid.row_stride_ = 2 * nh;
+  grid.row_stride_ = 2 * layout.nh;
   // Only the computed rows are stored (operator() gives -infinity beyond them).
-  grid.data_ = static_cast<double*>(fftw_malloc(sizeof(fftw_complex) * slice * rows));
+  grid.data_ =
+      static_cast<double*>(fftw_malloc(sizeof(fftw_complex) * layout.slice * rows));
   if (!grid.data_)
     throw std::bad_alloc();
-  Complex* T = reinterpret_cast<Complex*>(grid.data_);
+  layout.T = reinterpret_cast<Complex*>(grid.data_);
 
+  const WignerTables tables{*steps_, log_factorials_, cos_beta_, log_cos_half_,
+                            log_sin_half_};
 #pragma omp parallel num_threads(num_threads)
   {
-    // Zero what the Wigner stage does not write: orders |m'| >= B (rows p in [B, N-B])
-    // and m >= B (columns q in [B, Bo]), Nyquist included.
-#pragma omp for schedule(static)
-    for (int s = 0; s < rows; ++s)
-      for (int p = 0; p < N; ++p) {
-        Complex* row = T + s * slice + p * nh;
-        const bool unused_row = p >= B && p <= N - B;
-        std::fill(row + (unused_row ? 0 : B), row + nh, Complex(0.0));
-      }
-
-    WignerScratch w(J, B);
-    const double* cb = cos_beta_.data();
+    zeroUnwrittenOrders(layout);
+    WignerScratch w(layout.J, B);
 #pragma omp for schedule(dynamic, 1)
-    for (int m = 0; m < B; ++m) {
-      for (int mp = -(B - 1); mp < B; ++mp) {
-        const int L = std::max(std::abs(mp), m);
-        for (int l = L; l < B; ++l) {
-          const Complex h = source(l, m);
-          w.c1[l] = std::conj(coefficient(target, l, mp)) * h;
-          const Complex c2 = std::conj(coefficient(target, l, -mp)) * h;
-          w.c2[l] = ((l - m) % 2) ? -c2 : c2;
-        }
-        const WignerStart start = wignerStart(mp, m, log_factorials_);
-        for (int j = 0; j < J; ++j)
-          w.d0[j] = start.value(log_cos_half_[j], log_sin_half_[j]);
-        wignerAccumulate(*steps_, L, B, J, mp, m, cb,
-                         reinterpret_cast<const double*>(w.c1.data()),
-                         reinterpret_cast<const double*>(w.c2.data()), w.d0.data(),
-                         w.d1.data(), w.d2.data(), w.acc1_re.data(), w.acc1_im.data(),
-                         w.acc2_re.data(), w.acc2_im.data());
-        const double* a1r = w.acc1_re.data();
-        const double* a1i = w.acc1_im.data();
-        const double* a2r = w.acc2_re.data();
-        const double* a2i = w.acc2_im.data();
-        // c2r computes sum T e^{+i...}: feed conj(S) to get the e^{-i...} sum of the
-        // spec.
-        const int p1 = wrap(mp, N), p2 = wrap(-mp, N);
-        for (int j = 0; j < J; ++j) {
-          T[j * slice + p1 * nh + m] = Complex(a1r[j], -a1i[j]);
-          if (N - 1 - j < rows)
-            T[(N - 1 - j) * slice + p2 * nh + m] = Complex(a2r[j], -a2i[j]);
-        }
-      }
-    }
-
-#pragma omp for schedule(static)
-    for (int s = 0; s < rows; ++s) {
-      fftw_complex* in = reinterpret_cast<fftw_complex*>(T + s * slice);
-      fftw_execute_dft_c2r(plan_->slice_c2r.get(), in, reinterpret_cast<double*>(in));
-    }
+    for (int m = 0; m < B; ++m)
+      wignerOrder(target, source, m, tables, layout, w);
+    inverseSlices(layout, plan_->slice_c2r.get());
   }
   return grid;
 }

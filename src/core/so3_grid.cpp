@@ -2,12 +2,18 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  */
+#include "fftw_support.h"
+
+#include <pcl_phaser/core/so3_correlation.h>
 #include <pcl_phaser/core/so3_grid.h>
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
 
 namespace pcl::phaser {
 
@@ -46,6 +52,92 @@ double rotationDistance(const Eigen::Matrix3d& A, const Eigen::Matrix3d& B)
 {
   // Via the quaternion (2 atan2), accurate for tiny angles, unlike acos of the trace.
   return Eigen::AngleAxisd(Eigen::Matrix3d(A.transpose() * B)).angle();
+}
+
+// ---------------------------------------------------------------------------------------
+So3CorrelationGrid::So3CorrelationGrid(So3CorrelationGrid&& o) noexcept
+    : output_bandwidth_(o.output_bandwidth_)
+    , beta_rows_(o.beta_rows_)
+    , row_stride_(o.row_stride_)
+    , data_(o.data_)
+{
+  o.data_ = nullptr;
+  o.output_bandwidth_ = 0;
+  o.beta_rows_ = 0;
+}
+
+So3CorrelationGrid& So3CorrelationGrid::operator=(So3CorrelationGrid&& o) noexcept
+{
+  std::swap(output_bandwidth_, o.output_bandwidth_);
+  std::swap(beta_rows_, o.beta_rows_);
+  std::swap(row_stride_, o.row_stride_);
+  std::swap(data_, o.data_);
+  return *this;
+}
+
+So3CorrelationGrid::~So3CorrelationGrid()
+{
+  if (data_)
+    fftw_free(data_);
+}
+
+So3GridIndex So3CorrelationGrid::argmax(int num_threads) const
+{
+  // The best of each beta row (first on ties), then the rows in order: the first
+  // maximum in flat order whatever the thread count.
+  const int N = size();
+  const int rows = beta_rows_ < N ? std::max(1, beta_rows_ - 1) : N;
+  std::vector<So3GridIndex> best(static_cast<std::size_t>(rows));
+  std::vector<double> best_value(static_cast<std::size_t>(rows),
+                                 -std::numeric_limits<double>::infinity());
+#pragma omp parallel for num_threads(std::max(1, num_threads)) schedule(static)
+  for (int j = 0; j < rows; ++j)
+    for (int a = 0; a < N; ++a) {
+      const double* row = data_ + (static_cast<std::size_t>(j) * N + a) * row_stride_;
+      for (int c = 0; c < N; ++c)
+        if (row[c] > best_value[j]) {
+          best_value[j] = row[c];
+          best[j] = {j, a, c};
+        }
+    }
+  std::size_t winner = 0;
+  for (std::size_t j = 1; j < best.size(); ++j)
+    if (best_value[j] > best_value[winner])
+      winner = j;
+  return best.empty() ? So3GridIndex{} : best[winner];
+}
+
+So3GridIndex So3CorrelationGrid::argmaxNearIdentity(double radius) const
+{
+  // ZYZ angles (alpha, beta, gamma) have the quaternion w = cos(beta / 2) cos((alpha +
+  // gamma) / 2), so the angle to the identity is 2 acos|w|; beta grows with the row.
+  const int N = size();
+  const int Bo = output_bandwidth_;
+  So3GridIndex best{}, nearest{};
+  double best_value = -std::numeric_limits<double>::infinity();
+  double nearest_angle = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < N; ++j) {
+    const double cos_half_beta = std::cos(0.5 * gridEuler({j, 0, 0}, Bo).beta);
+    if (2.0 * std::acos(cos_half_beta) > std::max(radius, nearest_angle))
+      break;
+    for (int a = 0; a < N; ++a) {
+      const double* row = data_ + (static_cast<std::size_t>(j) * N + a) * row_stride_;
+      for (int c = 0; c < N; ++c) {
+        const double half_sum = 0.5 * M_PI * (a + c) / Bo;
+        const double w = std::min(1.0, std::abs(cos_half_beta * std::cos(half_sum)));
+        const double angle = 2.0 * std::acos(w);
+        if (angle < nearest_angle) {
+          nearest_angle = angle;
+          nearest = {j, a, c};
+        }
+        if (angle <= radius && row[c] > best_value) {
+          best_value = row[c];
+          best = {j, a, c};
+        }
+      }
+    }
+  }
+  return best_value > -std::numeric_limits<double>::infinity() ? best : nearest;
 }
 
 } // namespace pcl::phaser

@@ -17,6 +17,7 @@
 #include <omp.h>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace pcl::phaser {
 
@@ -55,29 +56,19 @@ struct Splat {
   double value;
 };
 
-SpatialVolume voxelizeImpl(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
-                           const Eigen::VectorXd* values,
-                           const SpatialVoxelParameters& parameters)
+/** The footprints of the points whose continuous voxel coordinate u (voxel centers at
+ *  integers) lies in [-1, n) on every axis, in point order; points or values that are
+ *  not finite are dropped. */
+std::vector<Splat> pointFootprints(const SpatialGrid& grid,
+                                   const Eigen::Matrix3Xd& points,
+                                   const Eigen::VectorXd* values, int threads)
 {
-  checkGrid(grid, "voxelize");
-  const int threads = resolveThreads(parameters.num_threads);
-  const double saturation = parameters.saturation;
-  if (!std::isfinite(saturation) || saturation < 0.0)
-    throw InvalidArgument("voxelize: saturation must be finite and >= 0");
-  if (values && values->size() != points.cols())
-    throw InvalidArgument("voxelize: " + std::to_string(values->size()) +
-                          " values for " + std::to_string(points.cols()) + " points");
-
-  const int nx = grid.dims.x(), ny = grid.dims.y(), nz = grid.dims.z();
   const Eigen::Index count = points.cols();
   const Eigen::Array3d upper = grid.dims.cast<double>().array();
-
-  // Footprints. A point contributes iff its continuous voxel coordinate u (voxel
-  // centers at integers) lies in [-1, n) on every axis; the range test is done in
-  // double so far or negative points are dropped before any integer conversion (the
-  // original cast -1 to unsigned and wrote such points into valid voxels).
-  // Footprints are a pure function of each point: computed in parallel, then compacted
-  // in point order.
+  // The range test is done in double so far or negative points are dropped before any
+  // integer conversion (the original cast -1 to unsigned and wrote such points into
+  // valid voxels). Footprints are a pure function of each point: computed in parallel,
+  // then compacted in point order.
   std::vector<Splat> all(static_cast<std::size_t>(count));
   std::vector<char> inside(static_cast<std::size_t>(count), 0);
 #pragma omp parallel for num_threads(threads) schedule(static)
@@ -97,21 +88,89 @@ SpatialVolume voxelizeImpl(const SpatialGrid& grid, const Eigen::Matrix3Xd& poin
   for (Eigen::Index i = 0; i < count; ++i)
     if (inside[i])
       splats.push_back(all[i]);
+  return splats;
+}
 
-  // Counting sort by lower x index (base x in [-1, nx)), stable by construction: slab x
-  // then visits the points with lower index x-1 and x, each run in point order.
+/** Counting sort of \a splats by lower x index (base x in [-1, nx)), stable by
+ *  construction. \return the nx + 2 bucket starts: bucket b (lower index b - 1) is
+ *  [start[b], start[b + 1]), so slab x visits the points with lower index x-1 and x,
+ *  each run in point order. */
+std::vector<std::size_t> sortBySlab(std::vector<Splat>& splats, int nx)
+{
   std::vector<std::size_t> slab_start(static_cast<std::size_t>(nx) + 2, 0);
   for (const Splat& sp : splats)
     ++slab_start[static_cast<std::size_t>(sp.base.x() + 1) + 1];
   for (std::size_t i = 1; i < slab_start.size(); ++i)
     slab_start[i] += slab_start[i - 1];
-  {
-    std::vector<Splat> sorted(splats.size());
-    std::vector<std::size_t> next(slab_start.begin(), slab_start.end() - 1);
-    for (const Splat& sp : splats)
-      sorted[next[static_cast<std::size_t>(sp.base.x() + 1)]++] = sp;
-    splats.swap(sorted);
+  std::vector<Splat> sorted(splats.size());
+  std::vector<std::size_t> next(slab_start.begin(), slab_start.end() - 1);
+  for (const Splat& sp : splats)
+    sorted[next[static_cast<std::size_t>(sp.base.x() + 1)]++] = sp;
+  splats.swap(sorted);
+  return slab_start;
+}
+
+/** Slab x of the voxelization: zeroes it, sums the trilinear weights W (into \a out)
+ *  and, with values, weight * value S (into \a weighted) of the splats in [first,
+ *  last), then turns W into the mean value times soft occupancy (see the header for
+ *  why) while the slab is in cache. Writes slab x only, in a fixed order. */
+void accumulateSlab(const SpatialGrid& grid, int x, const Splat* first,
+                    const Splat* last, bool with_values, double saturation,
+                    SpatialRealArray& out, SpatialRealArray& weighted)
+{
+  const int ny = grid.dims.y(), nz = grid.dims.z();
+  const std::size_t slab = static_cast<std::size_t>(ny) * nz;
+  std::fill_n(out.begin() + static_cast<std::ptrdiff_t>(x * slab), slab, 0.0);
+  if (with_values)
+    std::fill_n(weighted.begin() + static_cast<std::ptrdiff_t>(x * slab), slab, 0.0);
+  for (const Splat* s = first; s != last; ++s) {
+    const double wx = s->base.x() == x ? 1.0 - s->frac.x() : s->frac.x();
+    for (int dy = 0; dy < 2; ++dy) {
+      const int y = s->base.y() + dy;
+      if (y < 0 || y >= ny)
+        continue;
+      const double wxy = wx * (dy ? s->frac.y() : 1.0 - s->frac.y());
+      for (int dz = 0; dz < 2; ++dz) {
+        const int z = s->base.z() + dz;
+        if (z < 0 || z >= nz)
+          continue;
+        const double w = wxy * (dz ? s->frac.z() : 1.0 - s->frac.z());
+        const std::size_t flat = grid.flatIndex(x, y, z);
+        out[flat] += w;
+        if (with_values)
+          weighted[flat] += w * s->value;
+      }
+    }
   }
+  const std::size_t end = (static_cast<std::size_t>(x) + 1) * slab;
+  for (std::size_t i = static_cast<std::size_t>(x) * slab; i < end; ++i) {
+    const double w = out[i];
+    if (w <= 0.0) {
+      out[i] = 0.0;
+      continue;
+    }
+    const double occupancy =
+        saturation > 0.0 ? -saturation * std::expm1(-w / saturation) : w;
+    out[i] = with_values ? (weighted[i] / w) * occupancy : occupancy;
+  }
+}
+
+SpatialVolume voxelizeImpl(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
+                           const Eigen::VectorXd* values,
+                           const SpatialVoxelParameters& parameters)
+{
+  checkGrid(grid, "voxelize");
+  const int threads = resolveThreads(parameters.num_threads);
+  const double saturation = parameters.saturation;
+  if (!std::isfinite(saturation) || saturation < 0.0)
+    throw InvalidArgument("voxelize: saturation must be finite and >= 0");
+  if (values && values->size() != points.cols())
+    throw InvalidArgument("voxelize: " + std::to_string(values->size()) +
+                          " values for " + std::to_string(points.cols()) + " points");
+
+  const int nx = grid.dims.x();
+  std::vector<Splat> splats = pointFootprints(grid, points, values, threads);
+  const std::vector<std::size_t> slab_start = sortBySlab(splats, nx);
 
   SpatialVolume volume;
   volume.grid = grid;
@@ -119,53 +178,15 @@ SpatialVolume voxelizeImpl(const SpatialGrid& grid, const Eigen::Matrix3Xd& poin
   SpatialRealArray weighted;         // summed weight * value S, only with values
   if (values)
     weighted.resize(grid.size());
-
-  const std::size_t slab = static_cast<std::size_t>(ny) * nz;
+    // Slab x is zeroed and written by iteration x only and sums its points in a fixed
+    // order, so the result does not depend on the thread count (no racy += into shared
+    // voxels), and the zeroing is spread over the threads too. Splats with lower x
+    // index x-1 and x: buckets x and x+1 of the counting sort.
 #pragma omp parallel for num_threads(threads) schedule(static)
-  for (int x = 0; x < nx; ++x) {
-    // Slab x is zeroed and written by this iteration only and sums its points in a
-    // fixed order, so the result does not depend on the thread count (no racy += into
-    // shared voxels), and the zeroing is spread over the threads too. Splats with lower
-    // x index x-1 and x: buckets x and x+1 of the counting sort.
-    std::fill_n(volume.values.begin() + static_cast<std::ptrdiff_t>(x * slab), slab,
-                0.0);
-    if (values)
-      std::fill_n(weighted.begin() + static_cast<std::ptrdiff_t>(x * slab), slab, 0.0);
-    const auto first = splats.begin() + static_cast<std::ptrdiff_t>(slab_start[x]);
-    const auto last = splats.begin() + static_cast<std::ptrdiff_t>(slab_start[x + 2]);
-    for (auto s = first; s != last; ++s) {
-      const double wx = s->base.x() == x ? 1.0 - s->frac.x() : s->frac.x();
-      for (int dy = 0; dy < 2; ++dy) {
-        const int y = s->base.y() + dy;
-        if (y < 0 || y >= ny)
-          continue;
-        const double wxy = wx * (dy ? s->frac.y() : 1.0 - s->frac.y());
-        for (int dz = 0; dz < 2; ++dz) {
-          const int z = s->base.z() + dz;
-          if (z < 0 || z >= nz)
-            continue;
-          const double w = wxy * (dz ? s->frac.z() : 1.0 - s->frac.z());
-          const std::size_t flat = grid.flatIndex(x, y, z);
-          volume.values[flat] += w;
-          if (values)
-            weighted[flat] += w * s->value;
-        }
-      }
-    }
-    // Mean value times soft occupancy (see the header for why), while the slab is in
-    // cache: no other slab reads it.
-    const std::size_t end = (static_cast<std::size_t>(x) + 1) * slab;
-    for (std::size_t i = static_cast<std::size_t>(x) * slab; i < end; ++i) {
-      const double w = volume.values[i];
-      if (w <= 0.0) {
-        volume.values[i] = 0.0;
-        continue;
-      }
-      const double occupancy =
-          saturation > 0.0 ? -saturation * std::expm1(-w / saturation) : w;
-      volume.values[i] = values ? (weighted[i] / w) * occupancy : occupancy;
-    }
-  }
+  for (int x = 0; x < nx; ++x)
+    accumulateSlab(grid, x, splats.data() + slab_start[x],
+                   splats.data() + slab_start[x + 2], values != nullptr, saturation,
+                   volume.values, weighted);
   return volume;
 }
 

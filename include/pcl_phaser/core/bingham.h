@@ -46,8 +46,7 @@ struct BinghamNormalizer {
  *  I0((1-t)(z3-z4)/2) dt, a smooth 1-D integral of positive terms (likewise for the
  *  derivatives with I1, I2). It is evaluated with exponentially scaled Bessel
  *  functions and adaptive 21-point Gauss-Kronrod quadrature on a mesh graded towards
- *  the boundary layers of width 1/|z|; relative error <= 3e-13 (measured)
- *  for |z| <= 1e6; 3-300 us per call.
+ *  the boundary layers of width 1/|z|; relative error <= 3e-13 for |z| <= 1e6.
  *  \param[in] z concentrations, any order
  *  \param[in] with_fourth_moments also compute fourth_moments (for Newton's method) */
 BinghamNormalizer binghamNormalizer(const Eigen::Vector4d& z,

@@ -29,8 +29,8 @@ enum class ProjectionCenter {
                 ///< frame)
   Centroid,     ///< each cloud's centroid (object scans, clouds far from their origin)
   /** SensorOrigin when both clouds look like spinning-LiDAR scans in their sensor frame
-   *  (looksSensorCentered: they surround their origin in a band with empty poles), else
-   *  Centroid; PhaserResult::projection_center tells which. */
+   *  (they surround their origin in a band with empty poles), else Centroid;
+   *  PhaserResult::projection_center tells which. */
   Automatic
 };
 
@@ -65,8 +65,8 @@ struct PhaserParameters {
   /** \brief Refine the rotation again on the energy-normalized SO(3) correlation,
    *  within 0.75 deg x 64 / B of the maximum of the plain one, when the clouds are
    *  projected about their sensor origins (about centroids the plain refinement is
-   *  kept). It removes most of the pull of the field-of-view edges toward equal sensor
-   *  tilt (doc/benchmarks.md section 6). */
+   *  kept), against the pull of the field-of-view edges toward equal sensor tilt
+   *  (measured in doc/benchmarks.md section 6). Default true. */
   bool normalized_refinement = true;
   /** \brief Rotation hypotheses from the surface-orientation histograms, tried beside
    *  the range peaks about sensor origins, 0..10 (0: none). */
@@ -89,8 +89,8 @@ struct PhaserParameters {
    *  space the target's sensor saw through, and of target samples in space the
    *  source's sensor saw through, in [0, 1]. */
   double max_free_space_violation = 0.02;
-  /** \brief Verification: least PoseVerification::constraint (how well the matched
-   *  samples pin the translation down in every direction), in [0, 1/3]. */
+  /** \brief Verification: least PhaserResult::constraint (how well the matched samples
+   *  pin the translation down in every direction), in [0, 1/3]. */
   double min_constraint = 0.04;
   /** \brief About centroids, converged also needs a translation peak score (the
    *  peak-to-sidelobe ratio of the final 3-D correlation) of at least this, >= 0 ...
@@ -121,10 +121,10 @@ struct RotationHypothesis {
   double rotation_score = 0.0;   ///< normalized correlation at its grid peak, [-1, 1]
   double overlap = 0.0;          ///< peak of its 3-D correlation (larger is better)
   bool from_orientation = false; ///< a peak of the orientation histograms, not of range
-  double inlier_fraction = 0.0;  ///< PoseVerification::inlier_fraction of the pose
-  double verification_score = 0.0;   ///< PoseVerification::score of the pose
-  double free_space_violation = 0.0; ///< PoseVerification::free_space_violation
-  /** \brief PoseVerification::reverse_free_space_violation of the pose. */
+  double inlier_fraction = 0.0;  ///< as PhaserResult::inlier_fraction, for this pose
+  double verification_score = 0.0;   ///< as PhaserResult::verification_score
+  double free_space_violation = 0.0; ///< as PhaserResult::free_space_violation
+  /** \brief As PhaserResult::reverse_free_space_violation, for this pose. */
   double reverse_free_space_violation = 0.0;
 };
 
@@ -148,7 +148,7 @@ struct PhaserResult {
   Eigen::Vector3d lever_arm = Eigen::Vector3d::Zero();
   double rotation_score = 0.0; ///< normalized SO(3) correlation at rotation, [-1, 1]
   /** \brief Peak-to-sidelobe ratio of the Laplacian of the final 3-D correlation, >= 0
-   *  (identical scans score far above min_peak_score). */
+   *  (compared with PhaserParameters::min_peak_score about centroids). */
   double translation_score = 0.0;
   /** \brief Peak of the final 3-D correlation over the norms of the two voxel grids:
    *  the cosine similarity of the aligned grids, in [-1, 1] (1: identical). */
@@ -164,7 +164,11 @@ struct PhaserResult {
   double free_space_violation = 0.0; ///< share in space the target saw through, [0, 1]
   /** \brief Share of target samples in space the source saw through, [0, 1]. */
   double reverse_free_space_violation = 0.0;
-  double constraint = 0.0;          ///< PoseVerification::constraint of the final pose
+  /** \brief How well the matched samples pin the translation down in every direction:
+   *  the smallest eigenvalue of sum w n n^T over the inliers with a normal, over the
+   *  total weight, in [0, 1/3]; near 0 when a direction is left free (the ground
+   *  alone, walls of one direction); 0 without normals. */
+  double constraint = 0.0;
   double verification_radius = 0.0; ///< meters: half the coarse voxel
   int verification_samples = 0;     ///< source samples verified
   /** \brief Enough samples and, about sensor origins, inlier_fraction, constraint
@@ -177,11 +181,9 @@ struct PhaserResult {
   std::vector<double> rotation_weights;
   /** \brief Covariance of the translation, m^2 (target frame): the error of the
    *  sub-voxel peak of the last 3-D correlation under the noise its sidelobes and
-   *  mismatch imply. Not the width of the peak, which is far wider. */
+   *  mismatch imply, not the width of the peak. */
   Eigen::Matrix3d translation_covariance = Eigen::Matrix3d::Zero();
-  /** \brief Wall time of the target's preparation, ms; 0 when it came from the cache.
-   */
-  double target_ms = 0.0;
+  double target_ms = 0.0;       ///< ms, the target's preparation; 0 from the cache
   double sampling_ms = 0.0;     ///< ms, spherical binning of the source
   double sht_ms = 0.0;          ///< ms, spherical harmonic transforms of the source
   double so3_ms = 0.0;          ///< ms, SO(3) correlations and peak searches
@@ -244,7 +246,7 @@ BinghamDistribution rotationUncertainty(const PhaserResult& result);
 /** \brief 6 x 6 covariance of the pose error, ordered (rotation vector [rad],
  *  translation [m]) for omega = Log(R_true R_est^T) and nu = t_true - t_est, so its
  *  inverse can serve as the information matrix of a pose-graph edge: the Bingham's
- *  tangent covariance plus a model error per axis (rotationCovariance), and the
+ *  tangent covariance plus a model error per axis, and the
  *  translation covariance plus the rotation error through the lever arm. Symmetric
  *  positive definite when \a result converged; zero otherwise.
  *  \param[in] rotation rotationUncertainty(result)
