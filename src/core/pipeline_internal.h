@@ -119,6 +119,13 @@ constexpr double kPatchVoxels = 1.0;
 /** Gauss-Newton steps of refinePose on the final pose. */
 constexpr int kPolishIterations = 10;
 
+/** Pass-1 hypotheses are polished only when their unrefined rank is within this of the
+ *  best unrefined one (ranks: verification scores in [0, 1] less free-space penalties).
+ *  About 0.1 above the largest climb past the best unrefined rank that a winning
+ *  hypothesis needed on the revisit pairs and the overlap sweep (doc/benchmarks.md
+ *  11.5). */
+constexpr double kPolishMargin = 0.4;
+
 /** A pose and how well it verifies; with the rotation grid of the last accepted
  *  re-projection pass (its peak is near the identity), if one was accepted. */
 struct Pose {

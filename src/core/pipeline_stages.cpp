@@ -115,6 +115,8 @@ Pose polish(const SourceContext& s, const Pose& pose, PhaserEstimate& e,
       refinePoseWithin(s.target.index, s.samples, {pose.R, pose.t}, kPolishIterations,
                        kHypothesisSeparation, 2.0 * s.target.coarse.grid.voxel_size);
   e.verification_ms += msSince(start);
+  if (refined.R == pose.R && refined.t == pose.t)
+    return pose; // refused or nothing to climb: verifies as before
   Pose next = pose;
   next.R = refined.R;
   next.t = refined.t;
@@ -136,52 +138,76 @@ residualGrid(const SourceContext& s, const SphericalSpectrum& H, PhaserEstimate&
   return C;
 }
 
-/** Every hypothesis through the coarse translation search, polish (where poses can be
- *  verified) and verification, into e.hypotheses and \a v. The hypotheses are
- * independent tasks, one thread each, in one parallel region (no barrier inside a task,
- * so a thread the scheduler parks delays only its own task); each task's result does
- * not depend on the thread count. The stage times are the wall time of the region,
- * split in the tasks' proportions. */
-void translateHypotheses(const SourceContext& s, PhaserEstimate& e,
-                         std::vector<PoseVerification>& v)
+/** \a task(k) for k in \a tasks as independent one-thread tasks in one parallel region
+ *  (dynamic schedule: a thread the scheduler parks delays only its own task); the
+ *  first exception is rethrown after the region. */
+template <typename Task>
+void runTasks(const std::vector<int>& tasks, int num_threads, const Task& task)
 {
-  const int n = static_cast<int>(e.hypotheses.size());
-  v.assign(e.hypotheses.size(), PoseVerification{});
-  PhaserParameters single = s.p;
-  single.num_threads = 1;
-  std::vector<PhaserEstimate> times(e.hypotheses.size());
-  std::vector<std::exception_ptr> failed(e.hypotheses.size());
-  const bool polish_on = canVerify(s);
-  const auto start = Clock::now();
-#pragma omp parallel for num_threads(std::max(1, std::min(s.p.num_threads, n)))        \
+  const int n = static_cast<int>(tasks.size());
+  std::vector<std::exception_ptr> failed(tasks.size());
+#pragma omp parallel for num_threads(std::max(1, std::min(num_threads, n)))            \
     schedule(dynamic, 1)
-  for (int k = 0; k < n; ++k) {
+  for (int i = 0; i < n; ++i) {
     try {
-      RotationHypothesis& h = e.hypotheses[static_cast<std::size_t>(k)];
-      const SpatialCorrelationResult shift = shiftOf(
-          s.target.coarse, h.rotation * s.points, s.p.whitening, single, times[k]);
-      h.translation = shift.shift;
-      h.overlap = shift.peak_value;
-      Pose pose;
-      pose.R = h.rotation;
-      pose.t = h.translation;
-      pose.v = verify(s, h.rotation, h.translation, times[k], 1);
-      if (polish_on)
-        pose = polish(s, pose, times[k], 1);
-      h.rotation = pose.R;
-      h.translation = pose.t;
-      v[k] = pose.v;
+      task(tasks[static_cast<std::size_t>(i)]);
     } catch (...) {
-      failed[static_cast<std::size_t>(k)] = std::current_exception();
+      failed[static_cast<std::size_t>(i)] = std::current_exception();
     }
   }
   for (const std::exception_ptr& f : failed)
     if (f)
       std::rethrow_exception(f);
+}
+
+/** Every hypothesis through the coarse translation search and verification, then
+ *  (where poses can be verified) polish for those that rank within kPolishMargin of the
+ *  best, into e.hypotheses and \a v. Each hypothesis is a one-thread task (runTasks),
+ *  so its result does not depend on the thread count. The stage times are the wall
+ *  time of the regions, split in the tasks' proportions. */
+void translateHypotheses(const SourceContext& s, PhaserEstimate& e,
+                         std::vector<PoseVerification>& v)
+{
+  const std::size_t n = e.hypotheses.size();
+  PhaserParameters single = s.p;
+  single.num_threads = 1;
+  std::vector<PhaserEstimate> times(n);
+  std::vector<Pose> poses(n);
+  std::vector<int> all(n);
+  for (std::size_t k = 0; k < n; ++k)
+    all[k] = static_cast<int>(k);
+  const auto start = Clock::now();
+  runTasks(all, s.p.num_threads, [&](int k) {
+    const RotationHypothesis& h = e.hypotheses[static_cast<std::size_t>(k)];
+    Pose& pose = poses[static_cast<std::size_t>(k)];
+    const SpatialCorrelationResult shift = shiftOf(
+        s.target.coarse, h.rotation * s.points, s.p.whitening, single, times[k]);
+    e.hypotheses[static_cast<std::size_t>(k)].overlap = shift.peak_value;
+    pose.R = h.rotation;
+    pose.t = shift.shift;
+    pose.v = verify(s, pose.R, pose.t, times[k], 1);
+  });
+  if (canVerify(s) && n > 0) {
+    double best = rank(poses[0].v);
+    for (const Pose& pose : poses)
+      best = std::max(best, rank(pose.v));
+    std::vector<int> near;
+    for (std::size_t k = 0; k < n; ++k)
+      if (rank(poses[k].v) >= best - kPolishMargin)
+        near.push_back(static_cast<int>(k));
+    runTasks(near, s.p.num_threads, [&](int k) {
+      Pose& pose = poses[static_cast<std::size_t>(k)];
+      pose = polish(s, pose, times[k], 1);
+    });
+  }
+  v.assign(n, PoseVerification{});
   double translation = 0.0, verification = 0.0;
-  for (const PhaserEstimate& t : times) {
-    translation += t.translation_ms;
-    verification += t.verification_ms;
+  for (std::size_t k = 0; k < n; ++k) {
+    e.hypotheses[k].rotation = poses[k].R;
+    e.hypotheses[k].translation = poses[k].t;
+    v[k] = poses[k].v;
+    translation += times[k].translation_ms;
+    verification += times[k].verification_ms;
   }
   const double wall = msSince(start);
   const double busy = translation + verification;

@@ -7,9 +7,17 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 
+#include <cmath>
+#include <limits>
+
 namespace pcl::phaser {
 
 namespace {
+
+/** The steps stop once one turns less than this (radians, 0.006 deg)... */
+constexpr double kMinStepAngle = 1e-4;
+/** ... and moves less than this (meters). */
+constexpr double kMinStepShift = 1e-3;
 
 /** exp of the skew matrix of \a w (Rodrigues). */
 Eigen::Matrix3d expSo3(const Eigen::Vector3d& w)
@@ -20,40 +28,51 @@ Eigen::Matrix3d expSo3(const Eigen::Vector3d& w)
   return Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
 }
 
-} // namespace
-
-RigidPose refinePose(const PointIndex& target, const VerificationSamples& s,
-                     const RigidPose& start, int iterations)
+/** One Gauss-Newton sweep at \a pose: the normal equations (H, g) of the samples'
+ *  weighted point-to-plane distances. Returns the number of matches. */
+int sweep(const PointIndex& target, const VerificationSamples& s, const RigidPose& pose,
+          Eigen::Matrix<double, 6, 6>& H, Eigen::Matrix<double, 6, 1>& g)
 {
-  RigidPose pose = start;
   const bool with_normals = s.normals.cols() == s.points.cols();
   const double r2 = target.radius() * target.radius();
+  H.setZero();
+  g.setZero();
+  int matched = 0;
+  for (Eigen::Index i = 0; i < s.points.cols(); ++i) {
+    const Eigen::Vector3d q = pose.R * s.points.col(i) + pose.t;
+    const Eigen::Vector3d n_s = with_normals
+                                    ? Eigen::Vector3d(pose.R * s.normals.col(i))
+                                    : Eigen::Vector3d::Zero();
+    const Eigen::Index k = target.nearest(q, n_s, kMinNormalCosine);
+    if (k < 0)
+      continue;
+    const Eigen::Vector3d n = target.normal(k);
+    if (n.isZero())
+      continue;
+    const Eigen::Vector3d p = target.point(k);
+    const double closeness = 1.0 - (q - p).squaredNorm() / r2;
+    const double w = s.weights[i] * closeness * closeness;
+    Eigen::Matrix<double, 6, 1> J;
+    J << q.cross(n), n;
+    const double e = n.dot(q - p);
+    H += w * J * J.transpose();
+    g += w * e * J;
+    ++matched;
+  }
+  return matched;
+}
+
+/** refinePose, abandoned (returning \a start) as soon as a step leaves the trust
+ *  region of \a max_angle (radians) and \a max_shift (meters) around \a start. */
+RigidPose refine(const PointIndex& target, const VerificationSamples& s,
+                 const RigidPose& start, int iterations, double max_angle,
+                 double max_shift)
+{
+  RigidPose pose = start;
+  Eigen::Matrix<double, 6, 6> H;
+  Eigen::Matrix<double, 6, 1> g;
   for (int it = 0; it < iterations; ++it) {
-    Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
-    Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
-    int matched = 0;
-    for (Eigen::Index i = 0; i < s.points.cols(); ++i) {
-      const Eigen::Vector3d q = pose.R * s.points.col(i) + pose.t;
-      const Eigen::Vector3d n_s = with_normals
-                                      ? Eigen::Vector3d(pose.R * s.normals.col(i))
-                                      : Eigen::Vector3d::Zero();
-      const Eigen::Index k = target.nearest(q, n_s, kMinNormalCosine);
-      if (k < 0)
-        continue;
-      const Eigen::Vector3d n = target.normal(k);
-      if (n.isZero())
-        continue;
-      const Eigen::Vector3d p = target.point(k);
-      const double closeness = 1.0 - (q - p).squaredNorm() / r2;
-      const double w = s.weights[i] * closeness * closeness;
-      Eigen::Matrix<double, 6, 1> J;
-      J << q.cross(n), n;
-      const double e = n.dot(q - p);
-      H += w * J * J.transpose();
-      g += w * e * J;
-      ++matched;
-    }
-    if (matched < 6)
+    if (sweep(target, s, pose, H, g) < 6)
       break;
     // A little damping keeps directions the matches leave free (ground only, one wall
     // direction) where they are.
@@ -64,22 +83,31 @@ RigidPose refinePose(const PointIndex& target, const VerificationSamples& s,
     const Eigen::Matrix3d dR = expSo3(delta.head<3>());
     pose.R = dR * pose.R;
     pose.t = dR * pose.t + delta.tail<3>();
-    if (delta.head<3>().norm() < 1e-5 && delta.tail<3>().norm() < 1e-4)
+    const Eigen::AngleAxisd turn(pose.R * start.R.transpose());
+    // The source's origin (its sensor) lands at t: how far it moved.
+    if (std::abs(turn.angle()) > max_angle || (pose.t - start.t).norm() > max_shift)
+      return start;
+    if (delta.head<3>().norm() < kMinStepAngle &&
+        delta.tail<3>().norm() < kMinStepShift)
       break;
   }
   return pose;
+}
+
+} // namespace
+
+RigidPose refinePose(const PointIndex& target, const VerificationSamples& s,
+                     const RigidPose& start, int iterations)
+{
+  const double unbounded = std::numeric_limits<double>::infinity();
+  return refine(target, s, start, iterations, unbounded, unbounded);
 }
 
 RigidPose refinePoseWithin(const PointIndex& target, const VerificationSamples& samples,
                            const RigidPose& start, int iterations, double max_angle,
                            double max_shift)
 {
-  const RigidPose refined = refinePose(target, samples, start, iterations);
-  const Eigen::AngleAxisd turn(refined.R * start.R.transpose());
-  // The source's origin (its sensor) lands at t: how far it moved.
-  if (std::abs(turn.angle()) > max_angle || (refined.t - start.t).norm() > max_shift)
-    return start;
-  return refined;
+  return refine(target, samples, start, iterations, max_angle, max_shift);
 }
 
 } // namespace pcl::phaser

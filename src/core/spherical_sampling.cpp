@@ -11,6 +11,15 @@
 
 namespace pcl::phaser {
 
+namespace {
+
+/** Fewer points than this are binned by the calling thread: a parallel region's start
+ *  and barrier cost more than the work (two atan2 per point), and on a busy machine a
+ *  parked worker stalls the region. */
+constexpr Eigen::Index kMinParallelPoints = 16384;
+
+} // namespace
+
 std::vector<int> sphereCells(const Eigen::Matrix3Xd& points, int bandwidth,
                              int num_threads)
 {
@@ -19,7 +28,8 @@ std::vector<int> sphereCells(const Eigen::Matrix3Xd& points, int bandwidth,
   // thread count.
   const Eigen::Index n = points.cols();
   std::vector<int> cells(static_cast<std::size_t>(n));
-#pragma omp parallel for num_threads(std::max(1, num_threads)) schedule(static)
+  const int threads = n < kMinParallelPoints ? 1 : std::max(1, num_threads);
+#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)
   for (Eigen::Index i = 0; i < n; ++i)
     cells[i] = cellIndex(points.col(i), bandwidth);
   return cells;

@@ -14,6 +14,15 @@
 
 namespace pcl::phaser {
 
+namespace {
+
+/** Fewer samples than this are verified by the calling thread: a parallel region's
+ *  start and barrier cost more than the look-ups, and on a busy machine a parked
+ *  worker stalls the region. */
+constexpr Eigen::Index kMinParallelSamples = 8192;
+
+} // namespace
+
 FreeSpace freeSpace(const Eigen::Matrix3Xd& points, int bandwidth, double margin,
                     int num_threads)
 {
@@ -103,7 +112,8 @@ PoseVerification verifyPose(const PointIndex& target, const VerificationSamples&
   // Integer counts and per-sample terms summed in index order: the same for any thread
   // count.
   std::vector<double> closeness(static_cast<std::size_t>(n), 0.0);
-#pragma omp parallel for num_threads(num_threads) schedule(static)
+  const int threads = n < kMinParallelSamples ? 1 : std::max(1, num_threads);
+#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)
   for (Eigen::Index i = 0; i < n; ++i) {
     const Eigen::Vector3d q = R * samples.col(i) + t;
     const double d2 =

@@ -121,30 +121,54 @@ double PointIndex::nearestSquaredDistance(const Eigen::Vector3d& q,
 Eigen::Index PointIndex::nearest(const Eigen::Vector3d& q,
                                  const Eigen::Vector3d& normal, double min_cosine) const
 {
-  const bool check = normals_.cols() != 0 && !normal.isZero();
   std::int64_t key = 0;
   if (points_.cols() == 0 || !voxelKey(q, radius_, key))
     return -1;
+  // Gaps from q to the faces of its cell: a neighbor cell's points lie at least the
+  // gaps along its offset axes away. Slightly shrunk, so rounding never skips a cell
+  // that holds a candidate.
+  const Eigen::Array3d below = q.array() - (q.array() / radius_).floor() * radius_;
+  const Eigen::Array3d low = (below * (1.0 - 1e-9)).max(0.0);
+  const Eigen::Array3d high = ((radius_ - below) * (1.0 - 1e-9)).max(0.0);
   double best = radius_ * radius_;
   Eigen::Index found = -1;
+  // The own cell first: its nearest point bounds the search and skips most neighbors.
+  scanCell(key, q, normal, min_cosine, best, found);
   for (int dx = -1; dx <= 1; ++dx)
     for (int dy = -1; dy <= 1; ++dy)
       for (int dz = -1; dz <= 1; ++dz) {
-        const auto it = cells_.find(offsetKey(key, dx, dy, dz));
-        if (it == cells_.end())
+        if (dx == 0 && dy == 0 && dz == 0)
           continue;
-        for (Eigen::Index k = it->second.first; k < it->second.second; ++k) {
-          if (check && !normals_.col(k).isZero() &&
-              normals_.col(k).dot(normal) < min_cosine)
-            continue;
-          const double d2 = (points_.col(k) - q).squaredNorm();
-          if (d2 <= best) {
-            best = d2;
-            found = k;
-          }
+        const Eigen::Array3i d(dx, dy, dz);
+        double gap2 = 0.0;
+        for (int a = 0; a < 3; ++a) {
+          const double g = d[a] < 0 ? low[a] : (d[a] > 0 ? high[a] : 0.0);
+          gap2 += g * g;
         }
+        if (gap2 > best)
+          continue;
+        scanCell(offsetKey(key, dx, dy, dz), q, normal, min_cosine, best, found);
       }
   return found;
+}
+
+void PointIndex::scanCell(std::int64_t key, const Eigen::Vector3d& q,
+                          const Eigen::Vector3d& normal, double min_cosine,
+                          double& best, Eigen::Index& found) const
+{
+  const auto it = cells_.find(key);
+  if (it == cells_.end())
+    return;
+  const bool check = normals_.cols() != 0 && !normal.isZero();
+  for (Eigen::Index k = it->second.first; k < it->second.second; ++k) {
+    if (check && !normals_.col(k).isZero() && normals_.col(k).dot(normal) < min_cosine)
+      continue;
+    const double d2 = (points_.col(k) - q).squaredNorm();
+    if (d2 <= best) {
+      best = d2;
+      found = k;
+    }
+  }
 }
 
 } // namespace pcl::phaser

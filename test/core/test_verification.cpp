@@ -64,6 +64,39 @@ TEST(PointIndex, NearestDistanceMatchesBruteForceWithinTheRadius)
   EXPECT_LT(found, 300);
 }
 
+TEST(PointIndex, NearestWithNormalsMatchesBruteForce)
+{
+  // Dense points, so most queries find their match in their own cell and skip
+  // neighbor cells: the skipped cells must never hold a nearer agreeing point.
+  const Eigen::Matrix3Xd points = randomPoints(6000, 3.0, 3);
+  Eigen::Matrix3Xd normals = randomPoints(6000, 1.0, 4);
+  normals.colwise().normalize();
+  const Eigen::Matrix3Xd queries = randomPoints(400, 3.2, 5);
+  const double radius = 0.5;
+  const PointIndex index(points, radius, normals);
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  int found = 0;
+  for (Eigen::Index q = 0; q < queries.cols(); ++q) {
+    double brute = radius * radius;
+    Eigen::Index expected = -1;
+    for (Eigen::Index k = 0; k < points.cols(); ++k) {
+      const double d2 = (points.col(k) - queries.col(q)).squaredNorm();
+      if (normals.col(k).dot(up) >= kMinNormalCosine && d2 <= brute) {
+        brute = d2;
+        expected = k;
+      }
+    }
+    const Eigen::Index got = index.nearest(queries.col(q), up, kMinNormalCosine);
+    ASSERT_EQ(got < 0, expected < 0);
+    if (got >= 0) {
+      EXPECT_EQ(index.point(got), points.col(expected));
+      ++found;
+    }
+  }
+  EXPECT_GT(found, 100);
+  EXPECT_LT(found, 400);
+}
+
 TEST(PointIndex, EmptyAndNonFiniteQueriesFindNothing)
 {
   const PointIndex empty(Eigen::Matrix3Xd(3, 0), 1.0);

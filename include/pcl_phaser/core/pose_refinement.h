@@ -22,6 +22,7 @@ struct RigidPose {
  *  (1 - d^2 / r^2)^2, the derivative of the closeness that PoseVerification::score
  *  averages. It climbs that score from a pose whose samples already partly touch the
  *  target (a verified hypothesis, about half a coarse voxel off); it does not search.
+ *  The steps stop early when one turns less than 1e-4 rad and moves less than 1 mm.
  *  Deterministic (serial sums in sample order).
  *  \param[in] target target points with normals (samples without a matched normal
  *  are skipped) \param[in] samples source samples with weights and normals
@@ -30,8 +31,8 @@ struct RigidPose {
 RigidPose refinePose(const PointIndex& target, const VerificationSamples& samples,
                      const RigidPose& start, int iterations);
 
-/** \brief refinePose within a trust region: \a start when the refined pose turned by
- *  more than \a max_angle (radians) or moved the sensor by more than \a max_shift
+/** \brief refinePose within a trust region: \a start as soon as a step turns the pose
+ *  by more than \a max_angle (radians) or moves the sensor by more than \a max_shift
  *  (meters) from it (a climb that far left the basin it started in). */
 RigidPose refinePoseWithin(const PointIndex& target, const VerificationSamples& samples,
                            const RigidPose& start, int iterations, double max_angle,

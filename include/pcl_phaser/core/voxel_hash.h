@@ -70,6 +70,12 @@ public:
   bool empty() const { return points_.cols() == 0; }
 
 private:
+  /** The nearest point of cell \a key to \a q closer than \a best (squared, updated)
+   *  with an agreeing normal, into \a found. */
+  void scanCell(std::int64_t key, const Eigen::Vector3d& q,
+                const Eigen::Vector3d& normal, double min_cosine, double& best,
+                Eigen::Index& found) const;
+
   double radius_ = 0.0;
   Eigen::Matrix3Xd points_;
   Eigen::Matrix3Xd normals_; ///< empty, or one per point
