@@ -206,7 +206,7 @@ std::string validateParameters(const PhaserParameters& p)
     return "voxel size must be >= 0 (0 = derived from the grid size), got " +
            std::to_string(p.voxel_size);
   if (p.refinement_iterations < 0 || p.refinement_iterations > 10)
-    return "refinement iterations must be in [0, 10], got " +
+    return "refinement iterations must be in [0, 20], got " +
            std::to_string(p.refinement_iterations);
   if (p.rotation_candidates < 1 || p.rotation_candidates > 10)
     return "number of rotation candidates must be in [1, 10], got " +
@@ -215,8 +215,8 @@ std::string validateParameters(const PhaserParameters& p)
     return "fusion levels must be in [1, 8], got " + std::to_string(p.fusion_levels);
   if (p.passes < 1 || p.passes > 5)
     return "number of passes must be in [1, 5], got " + std::to_string(p.passes);
-  if (p.orientation_candidates < 0 || p.orientation_candidates > 10)
-    return "number of orientation candidates must be in [0, 10], got " +
+  if (p.orientation_candidates < 0 || p.orientation_candidates > 20)
+    return "number of orientation candidates must be in [0, 20], got " +
            std::to_string(p.orientation_candidates);
   if (p.orientation_bandwidth < 8 || p.orientation_bandwidth > 128)
     return "orientation bandwidth must be in [8, 128], got " +

@@ -87,6 +87,29 @@ double rank(const PoseVerification& v)
                        std::max(v.free_space_violation, v.reverse_free_space_violation);
 }
 
+/** Whether \a v meets the verification limits of \a p (inliers, constraint and both
+ *  free-space violations): a pose that could be declared right. */
+bool meetsLimits(const PoseVerification& v, const PhaserParameters& p)
+{
+  return v.inlier_fraction >= p.min_inlier_fraction &&
+         v.constraint >= p.min_constraint &&
+         std::max(v.free_space_violation, v.reverse_free_space_violation) <=
+             p.max_free_space_violation;
+}
+
+/** Whether verification \a a ranks above \a b: a pose within the limits above one
+ *  outside them, then by rank() (a wrong pose can match more samples than the right
+ *  one, e.g. a 180 deg flip of a symmetric yard, and still see through the target's
+ *  surfaces). */
+bool ranksAbove(const PoseVerification& a, const PoseVerification& b,
+                const PhaserParameters& p)
+{
+  const bool a_meets = meetsLimits(a, p), b_meets = meetsLimits(b, p);
+  if (a_meets != b_meets)
+    return a_meets;
+  return rank(a) > rank(b);
+}
+
 /** Whether a refined pose replaces the current one: when the poses are ranked by
  *  verification, if it ranks no worse; otherwise always (the passes' own stop rule
  *  decides). */
@@ -243,7 +266,7 @@ Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_
   for (std::size_t k = 1; k < e.hypotheses.size(); ++k) {
     const RotationHypothesis& h = e.hypotheses[k];
     const bool better =
-        verifiable ? rank(v[k]) > rank(v[best])
+        verifiable ? ranksAbove(v[k], v[best], s.p)
                    : !h.from_orientation && h.overlap > e.hypotheses[best].overlap;
     if (better)
       best = k;
@@ -361,11 +384,7 @@ void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
   e.constraint = pose.v.constraint;
   e.verification_samples = static_cast<int>(s.samples.points.cols());
   e.verified = e.verification_samples >= kMinVerificationSamples &&
-               (!p.sensor_centered ||
-                (pose.verifiable && e.inlier_fraction >= p.min_inlier_fraction &&
-                 e.constraint >= p.min_constraint &&
-                 std::max(e.free_space_violation, e.reverse_free_space_violation) <=
-                     p.max_free_space_violation));
+               (!p.sensor_centered || (pose.verifiable && meetsLimits(pose.v, p)));
   e.verification_score = pose.v.score;
 }
 

@@ -69,8 +69,8 @@ struct PhaserParameters {
    *  (measured in doc/benchmarks.md section 6). Default true. */
   bool normalized_refinement = true;
   /** \brief Rotation hypotheses from the surface-orientation histograms, tried beside
-   *  the range peaks about sensor origins, 0..10 (0: none). */
-  int orientation_candidates = 6;
+   *  the range peaks about sensor origins, 0..20 (0: none). */
+  int orientation_candidates = 10;
   /** \brief Bandwidth of the orientation histograms, 8..128. */
   int orientation_bandwidth = 32;
   /** \brief Exponent of the cross-power whitening of the global translation search,
