@@ -56,6 +56,8 @@ std::vector<So3GridIndex> distinctPeaks(const So3CorrelationGrid& grid, int coun
                                         double min_separation, int num_threads)
 {
   const int N = grid.size();
+  if (N <= 0)
+    return {};
   const int threads = std::max(1, num_threads);
   struct Candidate {
     double value;
@@ -65,32 +67,47 @@ std::vector<So3GridIndex> distinctPeaks(const So3CorrelationGrid& grid, int coun
   // 26-neighbor test then runs on few of them. Min and max are exact in any order, and
   // the maxima are gathered per beta row and joined in row order, so the result does
   // not depend on the thread count.
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-#pragma omp parallel for num_threads(threads) reduction(min : lo) reduction(max : hi)
-  for (int j = 0; j < N; ++j)
-    for (int a = 0; a < N; ++a)
-      for (int c = 0; c < N; ++c) {
-        lo = std::min(lo, grid(j, a, c));
-        hi = std::max(hi, grid(j, a, c));
-      }
-  const double floor = lo + 0.5 * (hi - lo);
+  // One parallel region: the value range per beta row, its merge (one thread), then
+  // the maxima.
+  std::vector<double> row_lo(static_cast<std::size_t>(N)), row_hi(row_lo.size());
   std::vector<std::vector<Candidate>> rows(static_cast<std::size_t>(N));
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 4)
-  for (int j = 0; j < N; ++j)
-    for (int a = 0; a < N; ++a)
-      for (int c = 0; c < N; ++c) {
-        const double v = grid(j, a, c);
-        if (v < floor)
-          continue;
-        bool is_max = true;
-        for (int dj = -1; dj <= 1 && is_max; ++dj)
-          for (int da = -1; da <= 1 && is_max; ++da)
-            for (int dc = -1; dc <= 1 && is_max; ++dc)
-              if ((dj || da || dc) && valueAt(grid, j + dj, a + da, c + dc) > v)
-                is_max = false;
-        if (is_max)
-          rows[j].push_back({v, (static_cast<std::size_t>(j) * N + a) * N + c});
-      }
+  double floor = 0.0;
+#pragma omp parallel num_threads(threads)
+  {
+#pragma omp for schedule(static)
+    for (int j = 0; j < N; ++j) {
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (int a = 0; a < N; ++a)
+        for (int c = 0; c < N; ++c) {
+          lo = std::min(lo, grid(j, a, c));
+          hi = std::max(hi, grid(j, a, c));
+        }
+      row_lo[j] = lo;
+      row_hi[j] = hi;
+    }
+#pragma omp single
+    {
+      const double lo = *std::min_element(row_lo.begin(), row_lo.end());
+      const double hi = *std::max_element(row_hi.begin(), row_hi.end());
+      floor = lo + 0.5 * (hi - lo);
+    }
+#pragma omp for schedule(dynamic, 4)
+    for (int j = 0; j < N; ++j)
+      for (int a = 0; a < N; ++a)
+        for (int c = 0; c < N; ++c) {
+          const double v = grid(j, a, c);
+          if (v < floor)
+            continue;
+          bool is_max = true;
+          for (int dj = -1; dj <= 1 && is_max; ++dj)
+            for (int da = -1; da <= 1 && is_max; ++da)
+              for (int dc = -1; dc <= 1 && is_max; ++dc)
+                if ((dj || da || dc) && valueAt(grid, j + dj, a + da, c + dc) > v)
+                  is_max = false;
+          if (is_max)
+            rows[j].push_back({v, (static_cast<std::size_t>(j) * N + a) * N + c});
+        }
+  }
   std::vector<Candidate> maxima;
   for (const std::vector<Candidate>& row : rows)
     maxima.insert(maxima.end(), row.begin(), row.end());
