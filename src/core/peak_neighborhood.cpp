@@ -58,7 +58,8 @@ std::vector<So3GridIndex> distinctPeaks(const So3CorrelationGrid& grid, int coun
   const int N = grid.size();
   if (N <= 0)
     return {};
-  const int threads = std::max(1, num_threads);
+  // Grids of fewer than 128^3 samples (Bo < 64) are searched by the calling thread.
+  const int threads = N < 128 ? 1 : std::max(1, num_threads);
   struct Candidate {
     double value;
     std::size_t flat;
@@ -72,9 +73,9 @@ std::vector<So3GridIndex> distinctPeaks(const So3CorrelationGrid& grid, int coun
   std::vector<double> row_lo(static_cast<std::size_t>(N)), row_hi(row_lo.size());
   std::vector<std::vector<Candidate>> rows(static_cast<std::size_t>(N));
   double floor = 0.0;
-#pragma omp parallel num_threads(threads)
+#pragma omp parallel num_threads(threads) if (threads > 1)
   {
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 4)
     for (int j = 0; j < N; ++j) {
       double lo = std::numeric_limits<double>::infinity(), hi = -lo;
       for (int a = 0; a < N; ++a)

@@ -70,7 +70,7 @@ void pointFootprints(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
   // The range test is done in double so far or negative points are dropped before any
   // integer conversion (the original cast -1 to unsigned and wrote such points into
   // valid voxels).
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 1024)
   for (Eigen::Index i = 0; i < count; ++i) {
     const double value = values ? (*values)[i] : 1.0;
     const Eigen::Array3d u =
@@ -189,7 +189,7 @@ SpatialVolume voxelizeImpl(const SpatialGrid& grid, const Eigen::Matrix3Xd& poin
     pointFootprints(grid, points, values, all, inside);
 #pragma omp single
     sortBySlab(all, inside, sorted, slab_start);
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 4)
     for (int x = 0; x < nx; ++x)
       accumulateSlab(grid, x, sorted.data() + slab_start[x],
                      sorted.data() + slab_start[x + 2], values != nullptr, saturation,

@@ -73,7 +73,7 @@ void laplacian(const SpatialVolume& c, SpatialRealArray& lap)
 {
   const SpatialGrid& grid = c.grid;
   const int nx = grid.dims.x(), ny = grid.dims.y(), nz = grid.dims.z();
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 4)
   for (int x = 0; x < nx; ++x) {
     const int xm = wrapIndex(x - 1, nx), xp = wrapIndex(x + 1, nx);
     for (int y = 0; y < ny; ++y) {
@@ -116,7 +116,7 @@ double peakScore(const SpatialVolume& c, const Eigen::Vector3i& peak, int thread
   std::vector<double> slab_sum(static_cast<std::size_t>(nx));
   std::vector<std::size_t> slab_count(static_cast<std::size_t>(nx));
   const auto slab_sums = [&](const SpatialRealArray& lap, double mean, bool squared) {
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 4)
     for (int x = 0; x < nx; ++x) {
       double sum = 0.0;
       std::size_t k = 0;
@@ -189,7 +189,7 @@ SpatialCorrelationResult findSpatialPeak(const SpatialVolume& correlation,
   // Argmax per x-slab, then merged in slab order: ties go to the lowest flat index
   // whatever the thread count.
   std::vector<std::size_t> slab_best(static_cast<std::size_t>(nx));
-#pragma omp parallel for num_threads(threads) schedule(static)
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 4)
   for (int x = 0; x < nx; ++x) {
     const std::size_t begin = static_cast<std::size_t>(x) * slab;
     std::size_t best = begin;
