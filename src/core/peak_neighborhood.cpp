@@ -52,26 +52,24 @@ std::vector<RotationSample> rotationNeighborhood(const So3CorrelationGrid& grid,
   return out;
 }
 
-std::vector<So3GridIndex> distinctPeaks(const So3CorrelationGrid& grid, int count,
-                                        double min_separation, int num_threads)
+namespace {
+
+struct PeakCandidate {
+  double value;
+  std::size_t flat; ///< (j * N + a) * N + c
+};
+
+/** The local maxima (26 neighbors, wrapping as valueAt does) of \a grid in the upper
+ *  half of its value range, best first (ties by flat index). Only samples in the upper
+ *  half can be peaks worth reporting; the neighbor test then runs on few of them. Min
+ *  and max are exact in any order, and the maxima are gathered per beta row and joined
+ *  in row order, so the result does not depend on the thread count. One parallel
+ *  region: the value range per beta row, its merge (one thread), then the maxima. */
+std::vector<PeakCandidate> upperLocalMaxima(const So3CorrelationGrid& grid, int threads)
 {
   const int N = grid.size();
-  if (N <= 0)
-    return {};
-  // Grids of fewer than 128^3 samples (Bo < 64) are searched by the calling thread.
-  const int threads = N < 128 ? 1 : std::max(1, num_threads);
-  struct Candidate {
-    double value;
-    std::size_t flat;
-  };
-  // Only samples in the upper half of the value range can be peaks worth reporting; the
-  // 26-neighbor test then runs on few of them. Min and max are exact in any order, and
-  // the maxima are gathered per beta row and joined in row order, so the result does
-  // not depend on the thread count.
-  // One parallel region: the value range per beta row, its merge (one thread), then
-  // the maxima.
   std::vector<double> row_lo(static_cast<std::size_t>(N)), row_hi(row_lo.size());
-  std::vector<std::vector<Candidate>> rows(static_cast<std::size_t>(N));
+  std::vector<std::vector<PeakCandidate>> rows(static_cast<std::size_t>(N));
   double floor = 0.0;
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
@@ -109,15 +107,30 @@ std::vector<So3GridIndex> distinctPeaks(const So3CorrelationGrid& grid, int coun
             rows[j].push_back({v, (static_cast<std::size_t>(j) * N + a) * N + c});
         }
   }
-  std::vector<Candidate> maxima;
-  for (const std::vector<Candidate>& row : rows)
+  std::vector<PeakCandidate> maxima;
+  for (const std::vector<PeakCandidate>& row : rows)
     maxima.insert(maxima.end(), row.begin(), row.end());
-  std::sort(maxima.begin(), maxima.end(), [](const Candidate& x, const Candidate& y) {
-    return x.value > y.value || (x.value == y.value && x.flat < y.flat);
-  });
+  std::sort(maxima.begin(), maxima.end(),
+            [](const PeakCandidate& x, const PeakCandidate& y) {
+              return x.value > y.value || (x.value == y.value && x.flat < y.flat);
+            });
+  return maxima;
+}
+
+} // namespace
+
+std::vector<So3GridIndex> distinctPeaks(const So3CorrelationGrid& grid, int count,
+                                        double min_separation, int num_threads)
+{
+  const int N = grid.size();
+  if (N <= 0)
+    return {};
+  // Grids of fewer than 128^3 samples (Bo < 64) are searched by the calling thread.
+  const int threads = N < 128 ? 1 : std::max(1, num_threads);
+  const std::vector<PeakCandidate> maxima = upperLocalMaxima(grid, threads);
   std::vector<So3GridIndex> peaks;
   std::vector<Eigen::Matrix3d> taken;
-  for (const Candidate& m : maxima) {
+  for (const PeakCandidate& m : maxima) {
     if (static_cast<int>(peaks.size()) >= count)
       break;
     const So3GridIndex idx{static_cast<int>(m.flat / (static_cast<std::size_t>(N) * N)),
