@@ -52,54 +52,85 @@ std::vector<RotationSample> rotationNeighborhood(const So3CorrelationGrid& grid,
   return out;
 }
 
+namespace {
+
+struct PeakCandidate {
+  double value;
+  std::size_t flat; ///< (j * N + a) * N + c
+};
+
+/** The local maxima (26 neighbors, wrapping as valueAt does) of \a grid in the upper
+ *  half of its value range, best first (ties by flat index). Only samples in the upper
+ *  half can be peaks worth reporting; the neighbor test then runs on few of them. Min
+ *  and max are exact in any order, and the maxima are gathered per beta row and joined
+ *  in row order, so the result does not depend on the thread count. One parallel
+ *  region: the value range per beta row, its merge (one thread), then the maxima. */
+std::vector<PeakCandidate> upperLocalMaxima(const So3CorrelationGrid& grid, int threads)
+{
+  const int N = grid.size();
+  std::vector<double> row_lo(static_cast<std::size_t>(N)), row_hi(row_lo.size());
+  std::vector<std::vector<PeakCandidate>> rows(static_cast<std::size_t>(N));
+  double floor = 0.0;
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  {
+#pragma omp for schedule(dynamic, 4)
+    for (int j = 0; j < N; ++j) {
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (int a = 0; a < N; ++a)
+        for (int c = 0; c < N; ++c) {
+          lo = std::min(lo, grid(j, a, c));
+          hi = std::max(hi, grid(j, a, c));
+        }
+      row_lo[j] = lo;
+      row_hi[j] = hi;
+    }
+#pragma omp single
+    {
+      const double lo = *std::min_element(row_lo.begin(), row_lo.end());
+      const double hi = *std::max_element(row_hi.begin(), row_hi.end());
+      floor = lo + 0.5 * (hi - lo);
+    }
+#pragma omp for schedule(dynamic, 4)
+    for (int j = 0; j < N; ++j)
+      for (int a = 0; a < N; ++a)
+        for (int c = 0; c < N; ++c) {
+          const double v = grid(j, a, c);
+          if (v < floor)
+            continue;
+          bool is_max = true;
+          for (int dj = -1; dj <= 1 && is_max; ++dj)
+            for (int da = -1; da <= 1 && is_max; ++da)
+              for (int dc = -1; dc <= 1 && is_max; ++dc)
+                if ((dj || da || dc) && valueAt(grid, j + dj, a + da, c + dc) > v)
+                  is_max = false;
+          if (is_max)
+            rows[j].push_back({v, (static_cast<std::size_t>(j) * N + a) * N + c});
+        }
+  }
+  std::vector<PeakCandidate> maxima;
+  for (const std::vector<PeakCandidate>& row : rows)
+    maxima.insert(maxima.end(), row.begin(), row.end());
+  std::sort(maxima.begin(), maxima.end(),
+            [](const PeakCandidate& x, const PeakCandidate& y) {
+              return x.value > y.value || (x.value == y.value && x.flat < y.flat);
+            });
+  return maxima;
+}
+
+} // namespace
+
 std::vector<So3GridIndex> distinctPeaks(const So3CorrelationGrid& grid, int count,
                                         double min_separation, int num_threads)
 {
   const int N = grid.size();
-  const int threads = std::max(1, num_threads);
-  struct Candidate {
-    double value;
-    std::size_t flat;
-  };
-  // Only samples in the upper half of the value range can be peaks worth reporting; the
-  // 26-neighbor test then runs on few of them. Min and max are exact in any order, and
-  // the maxima are gathered per beta row and joined in row order, so the result does
-  // not depend on the thread count.
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-#pragma omp parallel for num_threads(threads) reduction(min : lo) reduction(max : hi)
-  for (int j = 0; j < N; ++j)
-    for (int a = 0; a < N; ++a)
-      for (int c = 0; c < N; ++c) {
-        lo = std::min(lo, grid(j, a, c));
-        hi = std::max(hi, grid(j, a, c));
-      }
-  const double floor = lo + 0.5 * (hi - lo);
-  std::vector<std::vector<Candidate>> rows(static_cast<std::size_t>(N));
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 4)
-  for (int j = 0; j < N; ++j)
-    for (int a = 0; a < N; ++a)
-      for (int c = 0; c < N; ++c) {
-        const double v = grid(j, a, c);
-        if (v < floor)
-          continue;
-        bool is_max = true;
-        for (int dj = -1; dj <= 1 && is_max; ++dj)
-          for (int da = -1; da <= 1 && is_max; ++da)
-            for (int dc = -1; dc <= 1 && is_max; ++dc)
-              if ((dj || da || dc) && valueAt(grid, j + dj, a + da, c + dc) > v)
-                is_max = false;
-        if (is_max)
-          rows[j].push_back({v, (static_cast<std::size_t>(j) * N + a) * N + c});
-      }
-  std::vector<Candidate> maxima;
-  for (const std::vector<Candidate>& row : rows)
-    maxima.insert(maxima.end(), row.begin(), row.end());
-  std::sort(maxima.begin(), maxima.end(), [](const Candidate& x, const Candidate& y) {
-    return x.value > y.value || (x.value == y.value && x.flat < y.flat);
-  });
+  if (N <= 0)
+    return {};
+  // Grids of fewer than 128^3 samples (Bo < 64) are searched by the calling thread.
+  const int threads = N < 128 ? 1 : std::max(1, num_threads);
+  const std::vector<PeakCandidate> maxima = upperLocalMaxima(grid, threads);
   std::vector<So3GridIndex> peaks;
   std::vector<Eigen::Matrix3d> taken;
-  for (const Candidate& m : maxima) {
+  for (const PeakCandidate& m : maxima) {
     if (static_cast<int>(peaks.size()) >= count)
       break;
     const So3GridIndex idx{static_cast<int>(m.flat / (static_cast<std::size_t>(N) * N)),

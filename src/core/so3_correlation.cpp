@@ -22,6 +22,9 @@ using Complex = std::complex<double>;
 
 namespace {
 
+/** Correlations of bandwidth below this run on the calling thread. */
+constexpr int kMinParallelBandwidth = 64;
+
 /** F(l, m) for any order, from the stored m >= 0 half of a real function's spectrum. */
 inline Complex coefficient(const SphericalSpectrum& F, int l, int m)
 {
@@ -168,7 +171,7 @@ struct WignerTables {
  *  from inside a parallel region. */
 void zeroUnwrittenOrders(const SliceLayout& g)
 {
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 4)
   for (int s = 0; s < g.rows; ++s)
     for (int p = 0; p < g.N; ++p) {
       Complex* row = g.T + s * g.slice + p * g.nh;
@@ -218,7 +221,7 @@ void wignerOrder(const SphericalSpectrum& target, const SphericalSpectrum& sourc
  *  a parallel region. */
 void inverseSlices(const SliceLayout& g, fftw_plan slice_c2r)
 {
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 1)
   for (int s = 0; s < g.rows; ++s) {
     fftw_complex* in = reinterpret_cast<fftw_complex*>(g.T + s * g.slice);
     fftw_execute_dft_c2r(slice_c2r, in, reinterpret_cast<double*>(in));
@@ -300,7 +303,9 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
   const int rows = beta_rows == 0 ? N : std::min(beta_rows, N);
   checkSpectrum(target, B, "target");
   checkSpectrum(source, B, "source");
-  num_threads = std::max(1, num_threads);
+  // Below B = 64 (the orientation histograms' B = 32: about 1 ms of work) the calling
+  // thread does it all: a parked worker would cost more than the work.
+  num_threads = B < kMinParallelBandwidth ? 1 : std::max(1, num_threads);
 
   // beta_j for j < Bo; the mirrored half (rows N-1-j) comes from d(pi - beta). With a
   // tilt limit the recurrence runs over the rows j < min(rows, Bo) and the mirrored
@@ -326,7 +331,7 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
 
   const WignerTables tables{*steps_, log_factorials_, cos_beta_, log_cos_half_,
                             log_sin_half_};
-#pragma omp parallel num_threads(num_threads)
+#pragma omp parallel num_threads(num_threads) if (num_threads > 1)
   {
     zeroUnwrittenOrders(layout);
     WignerScratch w(layout.J, B);

@@ -90,7 +90,9 @@ So3GridIndex So3CorrelationGrid::argmax(int num_threads) const
   std::vector<So3GridIndex> best(static_cast<std::size_t>(rows));
   std::vector<double> best_value(static_cast<std::size_t>(rows),
                                  -std::numeric_limits<double>::infinity());
-#pragma omp parallel for num_threads(std::max(1, num_threads)) schedule(static)
+  // Grids of fewer than 128^3 samples (Bo < 64) are searched by the calling thread.
+  const int threads = N < 128 ? 1 : std::max(1, num_threads);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 4) if (threads > 1)
   for (int j = 0; j < rows; ++j)
     for (int a = 0; a < N; ++a) {
       const double* row = data_ + (static_cast<std::size_t>(j) * N + a) * row_stride_;

@@ -56,26 +56,26 @@ struct Splat {
   double value;
 };
 
-/** The footprints of the points whose continuous voxel coordinate u (voxel centers at
- *  integers) lies in [-1, n) on every axis, in point order; points or values that are
- *  not finite are dropped. */
-std::vector<Splat> pointFootprints(const SpatialGrid& grid,
-                                   const Eigen::Matrix3Xd& points,
-                                   const Eigen::VectorXd* values, int threads)
+/** Footprint of every point i in [0, count) into \a all, \a inside[i] = 1 when its
+ *  continuous voxel coordinate u (voxel centers at integers) lies in [-1, n) on every
+ *  axis and the point and value are finite (else 0). A pure function of each point, so
+ *  the loop is an orphaned worksharing loop: split over the enclosing parallel region's
+ *  threads, or run whole when called outside one. */
+void pointFootprints(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
+                     const Eigen::VectorXd* values, std::vector<Splat>& all,
+                     std::vector<char>& inside)
 {
   const Eigen::Index count = points.cols();
   const Eigen::Array3d upper = grid.dims.cast<double>().array();
   // The range test is done in double so far or negative points are dropped before any
   // integer conversion (the original cast -1 to unsigned and wrote such points into
-  // valid voxels). Footprints are a pure function of each point: computed in parallel,
-  // then compacted in point order.
-  std::vector<Splat> all(static_cast<std::size_t>(count));
-  std::vector<char> inside(static_cast<std::size_t>(count), 0);
-#pragma omp parallel for num_threads(threads) schedule(static)
+  // valid voxels).
+#pragma omp for schedule(dynamic, 1024)
   for (Eigen::Index i = 0; i < count; ++i) {
     const double value = values ? (*values)[i] : 1.0;
     const Eigen::Array3d u =
         (points.col(i) - grid.origin).array() / grid.voxel_size - 0.5;
+    inside[i] = 0;
     if (!std::isfinite(value) || !u.allFinite() || (u < -1.0).any() ||
         (u >= upper).any())
       continue;
@@ -83,31 +83,30 @@ std::vector<Splat> pointFootprints(const SpatialGrid& grid,
     all[i] = {lower.cast<int>().matrix(), (u - lower).matrix(), value};
     inside[i] = 1;
   }
-  std::vector<Splat> splats;
-  splats.reserve(static_cast<std::size_t>(count));
-  for (Eigen::Index i = 0; i < count; ++i)
-    if (inside[i])
-      splats.push_back(all[i]);
-  return splats;
 }
 
-/** Counting sort of \a splats by lower x index (base x in [-1, nx)), stable by
- *  construction. \return the nx + 2 bucket starts: bucket b (lower index b - 1) is
- *  [start[b], start[b + 1]), so slab x visits the points with lower index x-1 and x,
- *  each run in point order. */
-std::vector<std::size_t> sortBySlab(std::vector<Splat>& splats, int nx)
+/** Counting sort of the footprints in \a all marked \a inside by lower x index (base x
+ *  in [-1, nx)) into \a sorted (sized for all of them), stable: each bucket in point
+ *  order. \a slab_start (nx + 2 entries) receives the bucket starts: bucket b (lower
+ *  index b - 1) is [start[b], start[b + 1]), so slab x visits the points with lower
+ *  index x-1 and x, each run in point order. Allocates nothing. */
+void sortBySlab(const std::vector<Splat>& all, const std::vector<char>& inside,
+                std::vector<Splat>& sorted, std::vector<std::size_t>& slab_start)
 {
-  std::vector<std::size_t> slab_start(static_cast<std::size_t>(nx) + 2, 0);
-  for (const Splat& sp : splats)
-    ++slab_start[static_cast<std::size_t>(sp.base.x() + 1) + 1];
+  std::fill(slab_start.begin(), slab_start.end(), 0);
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (inside[i])
+      ++slab_start[static_cast<std::size_t>(all[i].base.x() + 1) + 1];
   for (std::size_t i = 1; i < slab_start.size(); ++i)
     slab_start[i] += slab_start[i - 1];
-  std::vector<Splat> sorted(splats.size());
-  std::vector<std::size_t> next(slab_start.begin(), slab_start.end() - 1);
-  for (const Splat& sp : splats)
-    sorted[next[static_cast<std::size_t>(sp.base.x() + 1)]++] = sp;
-  splats.swap(sorted);
-  return slab_start;
+  // slab_start[b] is the next free place of bucket b while scattering; it ends at
+  // bucket b's end, the start of bucket b + 1, so a shift by one restores the starts.
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (inside[i])
+      sorted[slab_start[static_cast<std::size_t>(all[i].base.x() + 1)]++] = all[i];
+  for (std::size_t b = slab_start.size() - 1; b > 0; --b)
+    slab_start[b] = slab_start[b - 1];
+  slab_start[0] = 0;
 }
 
 /** Slab x of the voxelization: zeroes it, sums the trilinear weights W (into \a out)
@@ -169,8 +168,10 @@ SpatialVolume voxelizeImpl(const SpatialGrid& grid, const Eigen::Matrix3Xd& poin
                           " values for " + std::to_string(points.cols()) + " points");
 
   const int nx = grid.dims.x();
-  std::vector<Splat> splats = pointFootprints(grid, points, values, threads);
-  const std::vector<std::size_t> slab_start = sortBySlab(splats, nx);
+  const std::size_t count = static_cast<std::size_t>(points.cols());
+  std::vector<Splat> all(count), sorted(count);
+  std::vector<char> inside(count);
+  std::vector<std::size_t> slab_start(static_cast<std::size_t>(nx) + 2);
 
   SpatialVolume volume;
   volume.grid = grid;
@@ -178,15 +179,22 @@ SpatialVolume voxelizeImpl(const SpatialGrid& grid, const Eigen::Matrix3Xd& poin
   SpatialRealArray weighted;         // summed weight * value S, only with values
   if (values)
     weighted.resize(grid.size());
-    // Slab x is zeroed and written by iteration x only and sums its points in a fixed
-    // order, so the result does not depend on the thread count (no racy += into shared
-    // voxels), and the zeroing is spread over the threads too. Splats with lower x
-    // index x-1 and x: buckets x and x+1 of the counting sort.
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (int x = 0; x < nx; ++x)
-    accumulateSlab(grid, x, splats.data() + slab_start[x],
-                   splats.data() + slab_start[x + 2], values != nullptr, saturation,
-                   volume.values, weighted);
+    // One parallel region: footprints (per point), the counting sort (one thread;
+    // nothing is allocated inside the region), then the slabs. Slab x is zeroed and
+    // written by iteration x only and sums its points in a fixed order, so the result
+    // does not depend on the thread count (no racy += into shared voxels). Splats with
+    // lower x index x-1 and x: buckets x and x+1 of the counting sort.
+#pragma omp parallel num_threads(threads)
+  {
+    pointFootprints(grid, points, values, all, inside);
+#pragma omp single
+    sortBySlab(all, inside, sorted, slab_start);
+#pragma omp for schedule(dynamic, 4)
+    for (int x = 0; x < nx; ++x)
+      accumulateSlab(grid, x, sorted.data() + slab_start[x],
+                     sorted.data() + slab_start[x + 2], values != nullptr, saturation,
+                     volume.values, weighted);
+  }
   return volume;
 }
 
@@ -315,28 +323,34 @@ SpatialVolume correlateInto(const SpatialSpectrum& target,
 
   const double scale = 1.0 / static_cast<double>(target.grid.size());
   out.resize(m);
-  const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(m);
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::ptrdiff_t i = 0; i < count; ++i) {
-    const std::complex<double> f = target.coefficients[i], g = source.coefficients[i];
-    std::complex<double> c{f.real() * g.real() + f.imag() * g.imag(),
-                           f.imag() * g.real() - f.real() * g.imag()};
-    if (whitening > 0.0) {
-      const double a = std::abs(c);
-      const double d = whitening == 0.5   ? std::sqrt(a)
-                       : whitening == 1.0 ? a
-                                          : std::pow(a, whitening);
-      c = a > 0.0 ? c / d : std::complex<double>{};
+  // The product of each run is formed inside the inverse transform's parallel region,
+  // just before the run is transformed (element-wise, so any split gives the same
+  // result).
+  const std::complex<double>* F = target.coefficients.data();
+  const std::complex<double>* G = source.coefficients.data();
+  std::complex<double>* C = out.data();
+  const auto product = [=](std::size_t first, std::size_t count) {
+    for (std::size_t i = first; i < first + count; ++i) {
+      const std::complex<double> f = F[i], g = G[i];
+      std::complex<double> c{f.real() * g.real() + f.imag() * g.imag(),
+                             f.imag() * g.real() - f.real() * g.imag()};
+      if (whitening > 0.0) {
+        const double a = std::abs(c);
+        const double d = whitening == 0.5   ? std::sqrt(a)
+                         : whitening == 1.0 ? a
+                                            : std::pow(a, whitening);
+        c = a > 0.0 ? c / d : std::complex<double>{};
+      }
+      C[i] = c * scale;
     }
-    out[i] = c * scale;
-  }
+  };
 
   SpatialVolume correlation;
   correlation.grid = target.grid;
   correlation.grid.origin = target.grid.origin - source.grid.origin;
   correlation.values.resize(target.grid.size());
-  detail::inverseFft3d(target.grid.dims, out.data(), correlation.values.data(),
-                       threads);
+  detail::inverseFft3d(target.grid.dims, C, correlation.values.data(), threads,
+                       product);
   return correlation;
 }
 

@@ -89,35 +89,49 @@ void forwardFft3d(const Eigen::Vector3i& dims, const double* in,
 {
   const auto plans = plansFor(dims);
   const int nx = dims.x(), ny = dims.y();
-#pragma omp parallel for num_threads(num_threads) schedule(static)
-  for (int x = 0; x < nx; ++x) {
-    // Out-of-place 2-D r2c preserves its input, so casting away const is safe.
-    double* slab = const_cast<double*>(in) + x * plans->slab_real;
-    fftw_execute_dft_r2c(plans->slab_forward[plans->slabIndex(slab)].get(), slab,
-                         asFftw(out + x * plans->slab_complex));
-  }
   const std::size_t row = plans->slab_complex / ny;
-#pragma omp parallel for num_threads(num_threads) schedule(static)
-  for (int y = 0; y < ny; ++y)
-    fftw_execute_dft(plans->row_forward.get(), asFftw(out + y * row),
-                     asFftw(out + y * row));
+  // One parallel region for both passes (the implicit barrier of the first loop
+  // separates them): one team start per transform, not two.
+#pragma omp parallel num_threads(num_threads)
+  {
+#pragma omp for schedule(dynamic, 4)
+    for (int x = 0; x < nx; ++x) {
+      // Out-of-place 2-D r2c preserves its input, so casting away const is safe.
+      double* slab = const_cast<double*>(in) + x * plans->slab_real;
+      fftw_execute_dft_r2c(plans->slab_forward[plans->slabIndex(slab)].get(), slab,
+                           asFftw(out + x * plans->slab_complex));
+    }
+#pragma omp for schedule(dynamic, 4)
+    for (int y = 0; y < ny; ++y)
+      fftw_execute_dft(plans->row_forward.get(), asFftw(out + y * row),
+                       asFftw(out + y * row));
+  }
 }
 
-void inverseFft3d(const Eigen::Vector3i& dims, std::complex<double>* in, double* out,
-                  int num_threads)
+void inverseFft3d(
+    const Eigen::Vector3i& dims, std::complex<double>* in, double* out, int num_threads,
+    const std::function<void(std::size_t first, std::size_t count)>& prepare)
 {
   const auto plans = plansFor(dims);
   const int nx = dims.x(), ny = dims.y();
   const std::size_t row = plans->slab_complex / ny;
-#pragma omp parallel for num_threads(num_threads) schedule(static)
-  for (int y = 0; y < ny; ++y)
-    fftw_execute_dft(plans->row_backward.get(), asFftw(in + y * row),
-                     asFftw(in + y * row));
-#pragma omp parallel for num_threads(num_threads) schedule(static)
-  for (int x = 0; x < nx; ++x) {
-    double* slab = out + x * plans->slab_real;
-    fftw_execute_dft_c2r(plans->slab_inverse[plans->slabIndex(slab)].get(),
-                         asFftw(in + x * plans->slab_complex), slab);
+#pragma omp parallel num_threads(num_threads)
+  {
+#pragma omp for schedule(dynamic, 4)
+    for (int y = 0; y < ny; ++y) {
+      // Row y's 1-D transforms read (x, y) for every x: prepare exactly those runs.
+      if (prepare)
+        for (int x = 0; x < nx; ++x)
+          prepare(x * plans->slab_complex + y * row, row);
+      fftw_execute_dft(plans->row_backward.get(), asFftw(in + y * row),
+                       asFftw(in + y * row));
+    }
+#pragma omp for schedule(dynamic, 4)
+    for (int x = 0; x < nx; ++x) {
+      double* slab = out + x * plans->slab_real;
+      fftw_execute_dft_c2r(plans->slab_inverse[plans->slabIndex(slab)].get(),
+                           asFftw(in + x * plans->slab_complex), slab);
+    }
   }
 }
 

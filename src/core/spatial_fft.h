@@ -9,6 +9,8 @@
 #include <Eigen/Core>
 
 #include <complex>
+#include <cstddef>
+#include <functional>
 
 namespace pcl::phaser {
 namespace detail {
@@ -26,9 +28,14 @@ void forwardFft3d(const Eigen::Vector3i& dims, const double* in,
                   std::complex<double>* out, int num_threads);
 
 /** \brief Inverse c2r 3-D DFT (unnormalized), the exact reverse split of forwardFft3d.
- *  \a in (nx x ny x (nz/2+1)) is destroyed; \a out receives nx x ny x nz reals. */
-void inverseFft3d(const Eigen::Vector3i& dims, std::complex<double>* in, double* out,
-                  int num_threads);
+ *  \a in (nx x ny x (nz/2+1)) is destroyed; \a out receives nx x ny x nz reals.
+ *  \param[in] prepare if set, called once for every contiguous run [first, first +
+ *  count) of \a in (the nz/2+1 coefficients of one (x, y)) just before its transform,
+ *  from any thread of the same parallel region; it may rewrite that run only. It lets
+ * an element-wise product run inside the transform's region instead of its own. */
+void inverseFft3d(
+    const Eigen::Vector3i& dims, std::complex<double>* in, double* out, int num_threads,
+    const std::function<void(std::size_t first, std::size_t count)>& prepare = {});
 
 } // namespace detail
 } // namespace pcl::phaser

@@ -211,7 +211,7 @@ void spatialFusion(const std::vector<SpatialSpectrum>& all,
 #pragma omp parallel num_threads(threads)
   {
     std::vector<double> energy(K);
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 4)
     for (int ix = 0; ix < nx; ++ix)
       for (int iy = 0; iy < ny; ++iy)
         for (int kz = 0; kz < hz; ++kz) {

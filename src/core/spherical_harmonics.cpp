@@ -10,6 +10,7 @@
 #include <pcl_phaser/core/spherical_grid.h>
 #include <pcl_phaser/core/spherical_harmonics.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstring>
@@ -17,6 +18,14 @@
 namespace pcl::phaser {
 
 using Complex = std::complex<double>;
+
+namespace {
+
+/** Bandwidths below this are transformed by the calling thread (B = 64: about 0.5 ms
+ *  of work, less than what a parallel region costs when a worker is parked). */
+constexpr int kMinParallelBandwidth = 128;
+
+} // namespace
 
 double spectrumSquaredNorm(const SphericalSpectrum& F)
 {
@@ -85,7 +94,10 @@ SphericalSpectrum SphericalHarmonicTransform::forward(const double* samples,
 
   SphericalSpectrum F = SphericalSpectrum::Zero(B, B);
   const double scale = M_PI / B;
-#pragma omp parallel num_threads(num_threads)
+  // Below kMinParallelBandwidth the whole transform (B^3 / 2 multiply-adds) takes less
+  // than a parallel region's start and barrier on a busy machine.
+  const int threads = B < kMinParallelBandwidth ? 1 : std::max(1, num_threads);
+#pragma omp parallel num_threads(threads) if (threads > 1)
   {
     std::vector<Complex> even(B), odd(B);
 #pragma omp for schedule(dynamic, 1)

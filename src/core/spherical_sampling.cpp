@@ -29,7 +29,7 @@ std::vector<int> sphereCells(const Eigen::Matrix3Xd& points, int bandwidth,
   const Eigen::Index n = points.cols();
   std::vector<int> cells(static_cast<std::size_t>(n));
   const int threads = n < kMinParallelPoints ? 1 : std::max(1, num_threads);
-#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1024) if (threads > 1)
   for (Eigen::Index i = 0; i < n; ++i)
     cells[i] = cellIndex(points.col(i), bandwidth);
   return cells;

@@ -113,7 +113,7 @@ PoseVerification verifyPose(const PointIndex& target, const VerificationSamples&
   // count.
   std::vector<double> closeness(static_cast<std::size_t>(n), 0.0);
   const int threads = n < kMinParallelSamples ? 1 : std::max(1, num_threads);
-#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 256) if (threads > 1)
   for (Eigen::Index i = 0; i < n; ++i) {
     const Eigen::Vector3d q = R * samples.col(i) + t;
     const double d2 =

@@ -8,6 +8,7 @@
 #include "so3_test_support.h"
 
 #include <pcl_phaser/core/error.h>
+#include <pcl_phaser/core/peak_neighborhood.h>
 #include <pcl_phaser/core/so3_correlation.h>
 #include <pcl_phaser/core/so3_refinement.h>
 #include <pcl_phaser/core/spherical_grid.h>
@@ -241,6 +242,37 @@ TEST(So3Correlation, ThreadCountDoesNotChangeBits)
   std::vector<Eigen::Matrix3d> rots = {test::randomRotation(rng),
                                        test::randomRotation(rng)};
   EXPECT_EQ(evaluateCorrelation(F, H, rots, 1), evaluateCorrelation(F, H, rots, 2));
+}
+
+TEST(So3Correlation, ThreadCountDoesNotChangeBitsAtWorkingBandwidth)
+{
+  // B = 64 is split over the threads (smaller bandwidths run on one); 6 beta rows keep
+  // the test short. The peak searches over the 128^3 grid are split too.
+  std::mt19937 rng(9);
+  const int B = 64, rows = 6;
+  const SphericalSpectrum F = test::randomSpectrum(B, rng);
+  const SphericalSpectrum H = test::randomSpectrum(B, rng);
+  const auto corr = So3Correlator::instance(B);
+  const So3CorrelationGrid a = corr->correlate(F, H, 1, rows);
+  const So3CorrelationGrid b = corr->correlate(F, H, 2, rows);
+  const int N = a.size();
+  bool same = true;
+  for (int j = 0; j < rows; ++j)
+    for (int al = 0; al < N; ++al)
+      for (int g = 0; g < N; ++g)
+        same = same && a(j, al, g) == b(j, al, g);
+  EXPECT_TRUE(same);
+  const So3GridIndex m1 = a.argmax(1), m2 = a.argmax(2);
+  EXPECT_EQ(m1.beta, m2.beta);
+  EXPECT_EQ(m1.alpha, m2.alpha);
+  EXPECT_EQ(m1.gamma, m2.gamma);
+  const std::vector<So3GridIndex> p1 = distinctPeaks(a, 5, 0.1, 1);
+  const std::vector<So3GridIndex> p2 = distinctPeaks(a, 5, 0.1, 2);
+  ASSERT_EQ(p1.size(), p2.size());
+  ASSERT_FALSE(p1.empty());
+  for (std::size_t i = 0; i < p1.size(); ++i)
+    EXPECT_TRUE(p1[i].beta == p2[i].beta && p1[i].alpha == p2[i].alpha &&
+                p1[i].gamma == p2[i].gamma);
 }
 
 TEST(So3Correlation, ConcurrentCorrelationsAgree)

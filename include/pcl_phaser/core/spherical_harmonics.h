@@ -43,7 +43,9 @@ public:
   int bandwidth() const { return bandwidth_; }
 
   /** \brief Coefficients of the real function given by its 4B^2 grid samples
-   *  (row-major, one row per ring). */
+   *  (row-major, one row per ring).
+   *  \param[in] num_threads threads for bandwidths of 128 and above (smaller transforms
+   *  run on the calling thread); the result does not depend on it. */
   SphericalSpectrum forward(const double* samples, int num_threads = 1) const;
 
   /** \brief Grid samples (4B^2, row-major) of the band-limited function with spectrum
