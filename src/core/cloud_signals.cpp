@@ -16,9 +16,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/** Points per cloud that enter one voxelization (see cloudSpatialSpectrum). */
-constexpr Eigen::Index kMaxSpatialPoints = 40000;
-
 double msSince(Clock::time_point start)
 {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -58,7 +55,6 @@ SphericalSpectrum cloudSphericalSpectrum(const Eigen::Matrix3Xd& points,
     spectra.push_back(sht->forward(s.values.data(), num_threads));
   FusionParameters fusion;
   fusion.levels = levels;
-  fusion.num_threads = num_threads;
   SphericalSpectrum fused =
       spectra.size() == 1 ? std::move(spectra.front()) : fuseSpherical(spectra, fusion);
   if (support) {
@@ -78,25 +74,6 @@ SphericalSpectrum cloudSphericalSpectrum(const Eigen::Matrix3Xd& points,
   }
   sht_ms += msSince(t);
   return fused;
-}
-
-SpatialSpectrum cloudSpatialSpectrum(const SpatialGrid& grid,
-                                     const Eigen::Matrix3Xd& points,
-                                     const ChannelValues& channels, int levels,
-                                     int num_threads)
-{
-  SpatialVoxelParameters voxel;
-  voxel.num_threads = num_threads;
-  std::vector<SpatialSpectrum> spectra;
-  spectra.push_back(computeSpectrum(voxelize(grid, points, voxel), num_threads));
-  for (const Eigen::VectorXd& c : channels)
-    spectra.push_back(computeSpectrum(voxelize(grid, points, c, voxel), num_threads));
-  if (spectra.size() == 1)
-    return std::move(spectra.front());
-  FusionParameters fusion;
-  fusion.levels = levels;
-  fusion.num_threads = num_threads;
-  return fuseSpatial(spectra, fusion);
 }
 
 } // namespace pcl::phaser

@@ -3,7 +3,7 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  *
  * Laplacian-pyramid fusion of channel spectra (paper IV-D) on the true frequency
- * structure: spherical degree bands, radial spatial-frequency shells.
+ * structure: spherical degree bands.
  */
 #include <pcl_phaser/core/error.h>
 #include <pcl_phaser/core/spectral_fusion.h>
@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <omp.h>
 #include <string>
 
 namespace pcl::phaser {
@@ -25,21 +24,8 @@ void checkLevels(int levels)
     throw InvalidArgument("fusion levels must be >= 1, got " + std::to_string(levels));
 }
 
-/** Band of a non-negative ratio f / f_max (no checks). Doubling is exact in floating
- *  point, so the band edges are exactly the dyadic fractions f_max / 2^k. */
-int bandOfRatio(double ratio, int levels)
-{
-  if (!(ratio > 0.0))
-    return 0; // DC (and, defensively, NaN) belongs to the averaged low-pass
-  int j = 0;  // largest j < L with ratio * 2^j < 1; ends after <= ~1075 doublings
-  while (j < levels - 1 && 2.0 * ratio < 1.0) {
-    ratio *= 2.0;
-    ++j;
-  }
-  return levels - 1 - j;
-}
-
-/** Band of degree l at bandwidth B (no checks): the integer twin of bandOfRatio. */
+/** Band of degree l at bandwidth B (no checks): 0 below B / 2^(L-1), then one band
+ *  per octave, in exact integer arithmetic. */
 int bandOfDegree(int degree, int bandwidth, int levels)
 {
   if (degree == 0)
@@ -118,14 +104,6 @@ presentSpherical(const std::vector<SphericalSpectrum>& channels)
                          [](const SphericalSpectrum& F) { return F.isZero(0.0); });
 }
 
-std::vector<std::size_t> presentSpatial(const std::vector<SpatialSpectrum>& channels)
-{
-  return presentChannels(channels, [](const SpatialSpectrum& S) {
-    return std::all_of(S.coefficients.begin(), S.coefficients.end(),
-                       [](const Complex& c) { return c == Complex(0.0); });
-  });
-}
-
 /** The choice per degree as an index into \a present (-1 = averaged). */
 std::vector<int> sphericalChoice(const std::vector<SphericalSpectrum>& all,
                                  const std::vector<std::size_t>& present,
@@ -160,96 +138,6 @@ std::vector<int> sphericalChoice(const std::vector<SphericalSpectrum>& all,
   return choice;
 }
 
-void checkSpatial(const std::vector<SpatialSpectrum>& channels,
-                  const FusionParameters& parameters)
-{
-  checkLevels(parameters.levels);
-  if (parameters.num_threads < 0)
-    throw InvalidArgument("fusion num_threads must be >= 0 (0 = OpenMP default), got " +
-                          std::to_string(parameters.num_threads));
-  if (channels.empty())
-    throw InvalidArgument("spatial fusion needs at least one channel");
-  const SpatialGrid& grid = channels.front().grid;
-  if ((grid.dims.array() < 1).any() || !(grid.voxel_size > 0.0) ||
-      !std::isfinite(grid.voxel_size))
-    throw InvalidArgument("spatial fusion: invalid grid (dims >= 1, voxel_size > 0)");
-  const std::size_t expected = static_cast<std::size_t>(grid.dims.x()) *
-                               static_cast<std::size_t>(grid.dims.y()) *
-                               static_cast<std::size_t>(channels.front().halfZ());
-  for (const SpatialSpectrum& S : channels) {
-    // All channels of one cloud are voxelized into one grid; anything else means the
-    // coefficients do not describe the same frequencies (or phases).
-    if (S.grid.dims != grid.dims || S.grid.voxel_size != grid.voxel_size ||
-        S.grid.origin != grid.origin)
-      throw InvalidArgument("spatial fusion: channel spectra have different grids");
-    if (S.coefficients.size() != expected)
-      throw InvalidArgument(
-          "spatial fusion: a spectrum has " + std::to_string(S.coefficients.size()) +
-          " coefficients, expected nx * ny * (nz/2 + 1) = " + std::to_string(expected));
-  }
-}
-
-/** One pass over the half-spectrum that records the choice (an index into \a
- *  present, -1 = averaged) and/or writes the fused coefficient, so fuseSpatial needs
- *  no int array of the spectrum's size. */
-void spatialFusion(const std::vector<SpatialSpectrum>& all,
-                   const std::vector<std::size_t>& present,
-                   const FusionParameters& parameters, SpatialComplexArray* fused,
-                   std::vector<int>* choice)
-{
-  const SpatialSpectrum& first = all.front();
-  const std::size_t K = present.size();
-  std::vector<const SpatialComplexArray*> channels(K);
-  for (std::size_t c = 0; c < K; ++c)
-    channels[c] = &all[present[c]].coefficients;
-  const int nx = first.grid.dims.x(), ny = first.grid.dims.y();
-  const int nz = first.grid.dims.z(), hz = first.halfZ();
-  const double voxel = first.grid.voxel_size;
-  const int levels = parameters.levels;
-  const int threads = parameters.num_threads == 0 ? std::max(1, omp_get_max_threads())
-                                                  : parameters.num_threads;
-#pragma omp parallel num_threads(threads)
-  {
-    std::vector<double> energy(K);
-#pragma omp for schedule(dynamic, 4)
-    for (int ix = 0; ix < nx; ++ix)
-      for (int iy = 0; iy < ny; ++iy)
-        for (int kz = 0; kz < hz; ++kz) {
-          const std::size_t flat =
-              (static_cast<std::size_t>(ix) * ny + iy) * static_cast<std::size_t>(hz) +
-              kz;
-          // f_max = Nyquist 1 / (2 voxel): ratio = |f| / f_max in cycles per meter, so
-          // the shells are spheres in physical frequency whatever the axis lengths.
-          const double ratio = 2.0 * voxel * first.frequency(flat).norm();
-          const int band = bandOfRatio(ratio, levels);
-          int pick = -1;
-          if (band > 0) {
-            // On the kz = 0 and kz = nz/2 planes the conjugate partner (-kx, -ky) is
-            // stored too; summing the pair (a + b == b + a exactly) gives both the same
-            // choice, so the fused half-spectrum stays Hermitian there.
-            const bool paired = kz == 0 || 2 * kz == nz;
-            const std::size_t partner =
-                (static_cast<std::size_t>((nx - ix) % nx) * ny + (ny - iy) % ny) *
-                    static_cast<std::size_t>(hz) +
-                kz;
-            for (std::size_t c = 0; c < K; ++c) {
-              const SpatialComplexArray& v = *channels[c];
-              energy[c] = paired ? std::norm(v[flat]) + std::norm(v[partner])
-                                 : std::norm(v[flat]);
-            }
-            pick = argmaxLowest(energy.data(), K);
-          }
-          if (choice)
-            (*choice)[flat] = pick;
-          if (fused)
-            (*fused)[flat] = pick >= 0 ? (*channels[pick])[flat]
-                                       : anchoredMean(K, [&](std::size_t c) {
-                                           return (*channels[c])[flat];
-                                         });
-        }
-  }
-}
-
 /** Median of v (mean of the two middle values for even sizes); reorders v. */
 double medianInPlace(std::vector<double>& v)
 {
@@ -273,14 +161,6 @@ int sphericalBand(int degree, int bandwidth, int levels)
                           std::to_string(degree) + ", bandwidth " +
                           std::to_string(bandwidth));
   return bandOfDegree(degree, bandwidth, levels);
-}
-
-int spatialBand(const Eigen::Vector3d& frequency, double voxel_size, int levels)
-{
-  checkLevels(levels);
-  if (!(voxel_size > 0.0) || !std::isfinite(voxel_size))
-    throw InvalidArgument("spatialBand: voxel_size must be > 0");
-  return bandOfRatio(2.0 * voxel_size * frequency.norm(), levels);
 }
 
 std::vector<double> sphericalDegreeEnergy(const SphericalSpectrum& F)
@@ -326,33 +206,6 @@ SphericalSpectrum fuseSpherical(const std::vector<SphericalSpectrum>& channels,
                                    : anchoredMean(K, [&](std::size_t c) {
                                        return channels[present[c]](l, m);
                                      });
-  return fused;
-}
-
-std::vector<int> selectSpatialChannels(const std::vector<SpatialSpectrum>& channels,
-                                       const FusionParameters& parameters)
-{
-  checkSpatial(channels, parameters);
-  const std::vector<std::size_t> present = presentSpatial(channels);
-  std::vector<int> choice(channels.front().coefficients.size(), -1);
-  spatialFusion(channels, present, parameters, nullptr, &choice);
-  for (int& c : choice)
-    if (c >= 0)
-      c = static_cast<int>(present[c]);
-  return choice;
-}
-
-SpatialSpectrum fuseSpatial(const std::vector<SpatialSpectrum>& channels,
-                            const FusionParameters& parameters)
-{
-  checkSpatial(channels, parameters);
-  const std::vector<std::size_t> present = presentSpatial(channels);
-  if (present.size() == 1)
-    return channels[present.front()];
-  SpatialSpectrum fused;
-  fused.grid = channels.front().grid;
-  fused.coefficients.resize(channels.front().coefficients.size());
-  spatialFusion(channels, present, parameters, &fused.coefficients, nullptr);
   return fused;
 }
 

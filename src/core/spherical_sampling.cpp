@@ -71,14 +71,4 @@ SphericalSamples binOnSphere(const std::vector<int>& cells,
   return out;
 }
 
-SphericalSamples sampleSphere(const Eigen::Matrix3Xd& points, int bandwidth,
-                              const Eigen::VectorXd* values, int num_threads)
-{
-  if (values && values->size() != points.cols())
-    throw InvalidArgument("sampleSphere: one value per point is required");
-  const std::vector<int> cells = sphereCells(points, bandwidth, num_threads);
-  return binOnSphere(cells, values ? *values : Eigen::VectorXd(points.colwise().norm()),
-                     bandwidth);
-}
-
 } // namespace pcl::phaser

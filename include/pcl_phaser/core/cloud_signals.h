@@ -43,17 +43,4 @@ SphericalSpectrum cloudSphericalSpectrum(const Eigen::Matrix3Xd& points,
                                          double& sht_ms,
                                          SphericalSupport* support = nullptr);
 
-/** \brief The fused voxel spectrum of a cloud on \a grid: occupancy (the geometry: mean
- *  range per voxel is not translation invariant) and every channel (mean value times
- *  soft occupancy), one r2c each, fused over radial frequency shells (fuseSpatial).
- *  \param[in] grid the target's grid
- *  \param[in] points 3 x n in the grid's frame
- *  \param[in] channels normalized channel values (may be empty)
- *  \param[in] levels pyramid levels
- *  \param[in] num_threads worker threads */
-SpatialSpectrum cloudSpatialSpectrum(const SpatialGrid& grid,
-                                     const Eigen::Matrix3Xd& points,
-                                     const ChannelValues& channels, int levels,
-                                     int num_threads);
-
 } // namespace pcl::phaser

@@ -4,7 +4,6 @@
  */
 #pragma once
 
-#include <pcl_phaser/core/spatial_correlation.h>
 #include <pcl_phaser/core/spherical_harmonics.h>
 
 #include <Eigen/Core>
@@ -13,9 +12,10 @@
 
 namespace pcl::phaser {
 
-/** \brief Fusion of K channel spectra (range, intensity, reflectivity, ...) of ONE
- * cloud into a single spectrum, so that one correlation serves all channels (PHASER
- * paper, section IV-D).
+/** \brief Fusion of K spherical channel spectra (range, intensity, reflectivity, ...)
+ * of ONE cloud into a single spectrum, so that one SO(3) correlation serves all
+ * channels (PHASER paper, section IV-D). The translation search correlates occupancy
+ * only (doc/method.md), so only spherical spectra are fused.
  *
  *  The paper fuses with a Laplacian pyramid: the top-level low-pass is averaged across
  *  channels, every other level keeps the coefficients of the channel with the highest
@@ -30,8 +30,7 @@ namespace pcl::phaser {
  *
  *  Unlike the reference implementation (doc: reference-implementation-notes.md section
  *  6), the bands follow the true frequency structure, not a flattened memory layout:
- *  spherical degree l (rotation-invariant) and radial frequency |k| in cycles per meter
- *  (isotropic, comparable across axes of different length). With L levels the bands are
+ *  spherical degree l (rotation-invariant). With L levels the bands are
  *  band 0 = [0, f_max / 2^(L-1)) (averaged) and band b = [f_max / 2^(L-b), f_max /
  *  2^(L-b-1)) for b = 1..L-1 (per-channel selection); the last band is open above.
  *
@@ -43,11 +42,7 @@ namespace pcl::phaser {
  *  would scale the averaged band down against the others.
  *
  *  Limit of the rule (paper's, kept): "highest energy" cannot tell structure from
- *  noise within one cloud. A pure-noise channel of the clean channel's RMS wins most
- *  high bands, where a smooth scene has little energy; in the unit tests the
- *  translation peak stays right but its peak-to-sidelobe score drops to ~40 % of the
- *  clean channel's (~80 % at half the RMS), a little below plain averaging (~50 %,
- *  levels = 1). Leave out channels known to carry no geometry. */
+ *  noise within one cloud; leave out channels known to carry no geometry. */
 struct FusionParameters {
   /** \brief Pyramid levels L >= 1 (1 = plain average of all channels). */
   int levels = 5;
@@ -56,9 +51,6 @@ struct FusionParameters {
    *  its own). Summing a few degrees steadies the choice, so target and source pick the
    *  same channel more often, while staying rotation-invariant. */
   int degree_radius = 1;
-  /** \brief OpenMP threads for the spatial fusion (0 = OpenMP default); the result does
-   *  not depend on it. */
-  int num_threads = 1;
 };
 
 /** \brief Band of spherical degree \a degree at bandwidth \a bandwidth: 0 for degree <
@@ -69,16 +61,6 @@ struct FusionParameters {
  *  \param[in] levels L >= 1
  *  \throws InvalidArgument for arguments outside these ranges */
 int sphericalBand(int degree, int bandwidth, int levels);
-
-/** \brief Band of a spatial frequency: f_max is the Nyquist frequency 1 / (2 voxel) of
- *  the grid, so band 0 is |f| < f_max / 2^(L-1) and band L-1 holds |f| >= f_max / 2,
- *  including the corners of the spectrum beyond the Nyquist sphere. The bands depend
- *  only on the voxel size, not on the grid dimensions.
- *  \param[in] frequency frequency vector in cycles per meter
- * (SpatialSpectrum::frequency) \param[in] voxel_size voxel edge in meters, > 0
- *  \param[in] levels L >= 1
- *  \throws InvalidArgument for voxel_size <= 0 or levels < 1 */
-int spatialBand(const Eigen::Vector3d& frequency, double voxel_size, int levels);
 
 /** \brief Energy of each degree of a real function's spectrum, |F(l,0)|^2 + 2
  *  sum_{m>=1} |F(l,m)|^2 (the L2 norm of its degree-l component). A rotation mixes the
@@ -109,30 +91,6 @@ std::vector<int> selectSphericalChannels(const std::vector<SphericalSpectrum>& c
  *  1 or degree_radius < 0 */
 SphericalSpectrum fuseSpherical(const std::vector<SphericalSpectrum>& channels,
                                 const FusionParameters& parameters = {});
-
-/** \brief The spatial fusion's choice per stored coefficient (same layout as
- *  SpatialSpectrum::coefficients): -1 in band 0, else the channel index with the
- * largest |c|^2 (ties: lowest index; all-zero channels are skipped). On the kz = 0 and
- * kz = nz/2 planes, where a coefficient and its conjugate partner (-kx, -ky) are both
- * stored, the energy is the sum over the pair, so both make the same choice and the
- * fused half-spectrum stays Hermitian. \throws InvalidArgument as fuseSpatial */
-std::vector<int> selectSpatialChannels(const std::vector<SpatialSpectrum>& channels,
-                                       const FusionParameters& parameters = {});
-
-/** \brief Fuses spatial channel spectra: coefficients in band 0 take the mean of the
- *  channels, every other coefficient the value of the channel with the largest
- *  magnitude there.
- *
- *  Per-coefficient selection is safe here: a translation multiplies every coefficient
- *  by a unit phase, so magnitudes, bands and therefore the choice are
- *  translation-invariant, and fuse(shifted channels) is the shifted fusion.
- *  \param[in] channels K >= 1 spectra of the same grid (dims, voxel size, origin) with
- *  nx * ny * (nz/2 + 1) coefficients each
- *  \param[in] parameters levels and threads
- *  \throws InvalidArgument for no channels, mismatched grids or sizes, an invalid grid,
- *  levels < 1 or num_threads < 0 */
-SpatialSpectrum fuseSpatial(const std::vector<SpatialSpectrum>& channels,
-                            const FusionParameters& parameters = {});
 
 /** \brief Robust per-cloud normalization of one channel before its transform, so that
  *  channels of very different numeric scale (uint16 reflectivity, ranges in meters,

@@ -17,23 +17,6 @@ struct SphericalSamples {
   int observed_cells = 0;     ///< cells that received at least one point
 };
 
-/** \brief Bins points, given relative to the projection center, into the 2B x 2B
- *  Driscoll-Healy cells: each observed cell takes the mean of its points' values (the
- *  range |p| when \a values is null). The mean over the observed cells is then
- *  subtracted and unobserved cells stay at zero, so the polar caps outside a LiDAR's
- *  vertical field of view and the shadows inject no signal (the reference
- *  implementation smeared the nearest ring over them). Points at the center and
- *  non-finite points are skipped.
- *  \param[in] points 3 x n, relative to the projection center
- *  \param[in] bandwidth B (1..256)
- *  \param[in] values optional per-point values (size n)
- *  \param[in] num_threads worker threads for the cell lookup; the result does not
- *  depend on it
- *  \throws InvalidArgument on an illegal bandwidth or a size mismatch */
-SphericalSamples sampleSphere(const Eigen::Matrix3Xd& points, int bandwidth,
-                              const Eigen::VectorXd* values = nullptr,
-                              int num_threads = 1);
-
 /** \brief The Driscoll-Healy cell of every point (-1 for the center and non-finite
  *  points), computed once and shared by all channels of a cloud.
  *  \param[in] points 3 x n, relative to the projection center
@@ -42,8 +25,12 @@ SphericalSamples sampleSphere(const Eigen::Matrix3Xd& points, int bandwidth,
 std::vector<int> sphereCells(const Eigen::Matrix3Xd& points, int bandwidth,
                              int num_threads = 1);
 
-/** \brief sampleSphere for precomputed cells: mean value per observed cell, de-meaned
- *  over the observed cells, zero elsewhere.
+/** \brief Bins per-point values into the 2B x 2B Driscoll-Healy cells given by
+ *  sphereCells: each observed cell takes the mean of its points' values; the mean over
+ *  the observed cells is then subtracted and unobserved cells stay at zero, so the
+ *  polar caps outside a LiDAR's vertical field of view and the shadows inject no signal
+ *  (the reference implementation smeared the nearest ring over them). Points with cell
+ *  -1 (the center, non-finite points) are skipped.
  *  \param[in] cells from sphereCells
  *  \param[in] values one per point
  *  \param[in] bandwidth B of the cells */
