@@ -41,7 +41,7 @@ struct VerificationFigures {
       std::numeric_limits<double>::quiet_NaN(); ///< free_space_violation
   double reverse_free_space = std::numeric_limits<double>::quiet_NaN();
   double constraint = std::numeric_limits<double>::quiet_NaN();
-  /** score - 3 max(violations) of the final pose, and of the best distant hypothesis */
+  /** PhaserResult::verification_rank of the final pose, and of the best distant one */
   double rank = std::numeric_limits<double>::quiet_NaN();
   double distant_rank = std::numeric_limits<double>::quiet_NaN();
 };

@@ -16,11 +16,6 @@ namespace bench {
 
 namespace {
 
-double rank(double score, double free_space, double reverse_free_space)
-{
-  return score - 3.0 * std::max(free_space, reverse_free_space);
-}
-
 VerificationFigures verificationOf(const PhaserResult& r)
 {
   VerificationFigures v;
@@ -28,15 +23,14 @@ VerificationFigures verificationOf(const PhaserResult& r)
   v.free_space = r.free_space_violation;
   v.reverse_free_space = r.reverse_free_space_violation;
   v.constraint = r.constraint;
-  v.rank = rank(r.verification_score, v.free_space, v.reverse_free_space);
+  v.rank = r.verification_rank;
   for (const RotationHypothesis& h : r.hypotheses) {
     const Eigen::Matrix4d d = r.transformation.inverse() * h.transformation;
     const double angle =
         Eigen::AngleAxisd(Eigen::Matrix3d(d.topLeftCorner<3, 3>())).angle();
     if (angle < 10.0 * M_PI / 180.0 && d.topRightCorner<3, 1>().norm() < 2.0)
       continue;
-    const double k = rank(h.verification_score, h.free_space_violation,
-                          h.reverse_free_space_violation);
+    const double k = h.verification_rank;
     if (!(k <= v.distant_rank))
       v.distant_rank = k;
   }

@@ -105,8 +105,8 @@ constexpr double kMinRankingInliers = 0.1;
 /** Largest surface thickness, in verification radii, at which poses are verified. */
 constexpr double kMaxThickness = 1.0 / 3.0;
 
-/** Weight of a free-space violation against an inlier in rank(). */
-constexpr double kViolationWeight = 3.0;
+/** Weight of a free-space violation (of either sensor) against an inlier in rank(). */
+constexpr double kViolationWeight = 6.0;
 
 /** Saturation of the occupancy grids: a voxel with a fraction of a point's weight is
  *  already almost full, so occupancy is binary and the near-sensor density (each scan
@@ -118,13 +118,6 @@ constexpr double kPatchVoxels = 1.0;
 
 /** Gauss-Newton steps of refinePose on the final pose. */
 constexpr int kPolishIterations = 10;
-
-/** Pass-1 hypotheses are polished only when their unrefined rank is within this of the
- *  best unrefined one (ranks: verification scores in [0, 1] less free-space penalties).
- *  About 0.1 above the largest climb past the best unrefined rank that a winning
- *  hypothesis needed on the revisit pairs and the overlap sweep (doc/benchmarks.md
- *  11.5). */
-constexpr double kPolishMargin = 0.4;
 
 /** A pose and how well it verifies; with the rotation grid of the last accepted
  *  re-projection pass (its peak is near the identity), if one was accepted. */

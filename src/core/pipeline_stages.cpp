@@ -78,13 +78,14 @@ std::vector<RotationHypothesis> rotationHypotheses(const SourceContext& s,
 }
 
 /** How a verified pose ranks: its closeness-weighted inlier share less a multiple of
- *  its free-space violations. A sample in space the target saw through is strong
- *  evidence against the pose; a sample without a target neighbor is weak (occlusion,
- *  partial overlap), hence the factor. */
+ *  its free-space violations, of the source's samples in space the target saw through
+ *  and of the target's samples in space the source saw through. A violation is strong
+ *  evidence against the pose and each sensor's is separate evidence; a sample without
+ *  a target neighbor is weak (occlusion, partial overlap), hence the factor. */
 double rank(const PoseVerification& v)
 {
-  return v.score - kViolationWeight *
-                       std::max(v.free_space_violation, v.reverse_free_space_violation);
+  return v.score -
+         kViolationWeight * (v.free_space_violation + v.reverse_free_space_violation);
 }
 
 /** Whether \a v meets the verification limits of \a p (inliers, constraint and both
@@ -184,10 +185,11 @@ void runTasks(const std::vector<int>& tasks, int num_threads, const Task& task)
 }
 
 /** Every hypothesis through the coarse translation search and verification, then
- *  (where poses can be verified) polish for those that rank within kPolishMargin of the
- *  best, into e.hypotheses and \a v. Each hypothesis is a one-thread task (runTasks),
- *  so its result does not depend on the thread count. The stage times are the wall
- *  time of the regions, split in the tasks' proportions. */
+ *  (where poses can be verified) the polish, into e.hypotheses and \a v: before the
+ *  polish the right hypothesis often ranks low (a voxel and a grid cell off, its
+ * samples fall in free space), so every one is polished. Each hypothesis is a
+ * one-thread task (runTasks), so its result does not depend on the thread count. The
+ * stage times are the wall time of the regions, split in the tasks' proportions. */
 void translateHypotheses(const SourceContext& s, PhaserEstimate& e,
                          std::vector<PoseVerification>& v)
 {
@@ -210,19 +212,11 @@ void translateHypotheses(const SourceContext& s, PhaserEstimate& e,
     pose.t = shift.shift;
     pose.v = verify(s, pose.R, pose.t, times[k], 1);
   });
-  if (canVerify(s) && n > 0) {
-    double best = rank(poses[0].v);
-    for (const Pose& pose : poses)
-      best = std::max(best, rank(pose.v));
-    std::vector<int> near;
-    for (std::size_t k = 0; k < n; ++k)
-      if (rank(poses[k].v) >= best - kPolishMargin)
-        near.push_back(static_cast<int>(k));
-    runTasks(near, s.p.num_threads, [&](int k) {
+  if (canVerify(s))
+    runTasks(all, s.p.num_threads, [&](int k) {
       Pose& pose = poses[static_cast<std::size_t>(k)];
       pose = polish(s, pose, times[k], 1);
     });
-  }
   v.assign(n, PoseVerification{});
   double translation = 0.0, verification = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
@@ -257,6 +251,7 @@ Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_
     RotationHypothesis& h = e.hypotheses[k];
     h.inlier_fraction = v[k].inlier_fraction;
     h.verification_score = v[k].score;
+    h.verification_rank = rank(v[k]);
     h.free_space_violation = v[k].free_space_violation;
     h.reverse_free_space_violation = v[k].reverse_free_space_violation;
     verifiable = verifiable || v[k].inlier_fraction >= kMinRankingInliers;
@@ -386,6 +381,7 @@ void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
   e.verified = e.verification_samples >= kMinVerificationSamples &&
                (!p.sensor_centered || (pose.verifiable && meetsLimits(pose.v, p)));
   e.verification_score = pose.v.score;
+  e.verification_rank = rank(pose.v);
 }
 
 } // namespace detail

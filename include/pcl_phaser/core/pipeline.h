@@ -126,6 +126,7 @@ struct RotationHypothesis {
   double free_space_violation = 0.0; ///< as PhaserResult::free_space_violation
   /** \brief As PhaserResult::reverse_free_space_violation, for this pose. */
   double reverse_free_space_violation = 0.0;
+  double verification_rank = 0.0; ///< as PhaserResult::verification_rank, for this pose
 };
 
 /** \brief What one align() found. On failure (error not empty) transformation is the
@@ -164,6 +165,11 @@ struct PhaserResult {
   double free_space_violation = 0.0; ///< share in space the target saw through, [0, 1]
   /** \brief Share of target samples in space the source saw through, [0, 1]. */
   double reverse_free_space_violation = 0.0;
+  /** \brief The order of poses where verification ranks them (about sensor origins):
+   *  verification_score less 6 x the sum of both free-space violations, in [-12, 1];
+   *  among poses within the verification limits, and among those outside them, the
+   *  higher wins. */
+  double verification_rank = 0.0;
   /** \brief How well the matched samples pin the translation down in every direction:
    *  the smallest eigenvalue of sum w n n^T over the inliers with a normal, over the
    *  total weight, in [0, 1/3]; near 0 when a direction is left free (the ground
