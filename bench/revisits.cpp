@@ -53,6 +53,7 @@ struct RevisitOptions {
   int derived_pairs = 0; ///< per bin from the poses instead of the pairs file; 0: off
   unsigned seed = 1;
   double voxel = 1.0; ///< leaf of PCL's methods, as for the compare study's LiDAR
+  double source_wedge = 1.0; ///< azimuth share of each source kept (-source-wedge)
   std::string csv, markdown, plots;
 };
 
@@ -101,6 +102,7 @@ bool parseRevisitOptions(int argc, char** argv, RevisitOptions& o)
   if (console::parse_argument(argc, argv, "-methods", methods) >= 0)
     o.methods = splitList(methods);
   console::parse_argument(argc, argv, "-max-pairs", o.max_pairs);
+  console::parse_argument(argc, argv, "-source-wedge", o.source_wedge);
   console::parse_argument(argc, argv, "-derived-pairs", o.derived_pairs);
   console::parse_argument(argc, argv, "-threads", o.threads);
   console::parse_argument(argc, argv, "-seed", o.seed);
@@ -123,6 +125,8 @@ bool parseRevisitOptions(int argc, char** argv, RevisitOptions& o)
     fail("-max-pairs");
   if (o.derived_pairs < 0)
     fail("-derived-pairs");
+  if (!(o.source_wedge > 0.0 && o.source_wedge <= 1.0))
+    fail("-source-wedge");
   if (o.threads < 1 || o.threads > 256)
     fail("-threads");
   if (!(o.voxel > 0.0))
@@ -182,6 +186,21 @@ void writeCsvRow(std::ostream& out, const RevisitTrial& t)
 }
 
 /** Every pair by every method, as Runner::run() of the compare study does it. */
+/** The sector of \a scan that a sensor with a \a fraction x 360 deg horizontal field of
+ *  view would have seen, about a direction drawn from (\a seed, \a pair). */
+Cloud::ConstPtr wedgeOf(const Cloud& scan, double fraction, unsigned seed,
+                        std::size_t pair)
+{
+  std::seed_seq seq{seed, static_cast<unsigned>(pair)};
+  std::mt19937 rng(seq);
+  Condition wedge;
+  wedge.kind = Condition::Kind::Overlap;
+  wedge.value = fraction;
+  auto out = pcl::make_shared<Cloud>(scan);
+  applyCondition(wedge, *out, rng);
+  return out;
+}
+
 std::vector<RevisitTrial> runTrials(const RevisitOptions& o, const std::string& folder,
                                     const std::vector<RevisitPair>& pairs,
                                     std::ostream* csv)
@@ -201,10 +220,12 @@ std::vector<RevisitTrial> runTrials(const RevisitOptions& o, const std::string& 
   std::vector<RevisitTrial> trials;
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const RevisitPair& pair = pairs[i];
-    const Cloud::ConstPtr source = scan(pair.source);
+    Cloud::ConstPtr source = scan(pair.source);
     const Cloud::ConstPtr target = scan(pair.target);
     if (!source || !target)
       continue; // the loader said why
+    if (o.source_wedge < 1.0)
+      source = wedgeOf(*source, o.source_wedge, o.seed, i);
     for (const std::string& name : o.methods) {
       const MethodResult r = findMethod(name)->run(source, target, settings);
       RevisitTrial t;
@@ -374,6 +395,9 @@ void printRevisitsHelp(const char* program)
       "                   poses_T_world_lidar.txt (scan gap >= 18, not in the pairs\n"
       "                   file either way), shuffled with -seed (default 0: off)\n"
       "  -max-pairs N     only the first N pairs (default 0: all)\n"
+      "  -source-wedge F  keep of each source only an azimuth sector of F x 360 deg\n"
+      "                   about a random direction (seeded by -seed and the pair),\n"
+      "                   in (0, 1] (default 1: the whole scan)\n"
       "  -methods A,B     default phaser,phaser_xyz,sacia,prerejective\n"
       "  -threads N       threads for every method (default 2)\n"
       "  -seed S          seed of PCL's RANSAC (default 1)\n"

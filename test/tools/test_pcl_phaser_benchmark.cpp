@@ -297,6 +297,16 @@ TEST(PclPhaserBenchmark, RevisitStudyTabulatesMethodsByDistance)
   EXPECT_NE(md.find("| phaser_xyz | all | 2 | "), std::string::npos) << md;
   run("-study revisits -derived-pairs -1 2>&1", status);
   EXPECT_NE(status, 0);
+  for (const char* wedge : {"0", "1.5", "nan"}) {
+    run(std::string("-study revisits -source-wedge ") + wedge + " 2>&1", status);
+    EXPECT_NE(status, 0) << wedge;
+  }
+  const std::string wedged = run("-data " + pcl::phaser::test::dataDir() +
+                                     " -study revisits -source-wedge 0.5 -max-pairs 1 "
+                                     "-methods phaser_xyz 2>/dev/null",
+                                 status);
+  ASSERT_EQ(status, 0) << wedged;
+  EXPECT_NE(wedged.find("| phaser_xyz | all | 1 | "), std::string::npos) << wedged;
   const std::string derived = run("-data " + pcl::phaser::test::dataDir() +
                                       " -study revisits -derived-pairs 1 -max-pairs 1 "
                                       "-methods phaser_xyz 2>/dev/null",
