@@ -301,16 +301,16 @@ TEST(PclPhaserBenchmark, RevisitStudyTabulatesMethodsByDistance)
     run(std::string("-study revisits -source-wedge ") + wedge + " 2>&1", status);
     EXPECT_NE(status, 0) << wedge;
   }
-  const std::string wedged = run("-data " + pcl::phaser::test::dataDir() +
-                                     " -study revisits -source-wedge 0.5 -max-pairs 1 "
-                                     "-methods phaser_xyz 2>/dev/null",
-                                 status);
+  // One pair, range only, with the study's options \a extra.
+  const auto one_pair = [&](const std::string& extra) {
+    return run("-data " + pcl::phaser::test::dataDir() + " -study revisits " + extra +
+                   " -max-pairs 1 -methods phaser_xyz 2>/dev/null",
+               status);
+  };
+  const std::string wedged = one_pair("-source-wedge 0.5");
   ASSERT_EQ(status, 0) << wedged;
   EXPECT_NE(wedged.find("| phaser_xyz | all | 1 | "), std::string::npos) << wedged;
-  const std::string derived = run("-data " + pcl::phaser::test::dataDir() +
-                                      " -study revisits -derived-pairs 1 -max-pairs 1 "
-                                      "-methods phaser_xyz 2>/dev/null",
-                                  status);
+  const std::string derived = one_pair("-derived-pairs 1");
   ASSERT_EQ(status, 0) << derived;
   EXPECT_NE(derived.find("pairs derived from"), std::string::npos) << derived;
   EXPECT_NE(derived.find("| method | distance | n | success @2 m |"), std::string::npos)
