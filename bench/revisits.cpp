@@ -185,7 +185,6 @@ void writeCsvRow(std::ostream& out, const RevisitTrial& t)
   out << line << std::flush; // a long run can be read while it goes
 }
 
-/** Every pair by every method, as Runner::run() of the compare study does it. */
 /** The sector of \a scan that a sensor with a \a fraction x 360 deg horizontal field of
  *  view would have seen, about a direction drawn from (\a seed, \a pair). */
 Cloud::ConstPtr wedgeOf(const Cloud& scan, double fraction, unsigned seed,
@@ -201,6 +200,7 @@ Cloud::ConstPtr wedgeOf(const Cloud& scan, double fraction, unsigned seed,
   return out;
 }
 
+/** Every pair by every method, as Runner::run() of the compare study does it. */
 std::vector<RevisitTrial> runTrials(const RevisitOptions& o, const std::string& folder,
                                     const std::vector<RevisitPair>& pairs,
                                     std::ostream* csv)

@@ -141,9 +141,10 @@ TEST(Revisits, UnrelatedPlacesDoNotConverge)
 // A pair 18.5 m apart (full48 -> full90) whose scene has a 90 deg symmetry. The
 // symmetric pose (90 deg off) puts its source samples on the target's surfaces, and
 // only a few in space the target's sensor saw through, but many of the target's samples
-// in space the source's sensor saw through. Ranked by the larger of the two shares, it
-// won pass 1 and was refused only by the two-way test of hasConverged(); ranked by
-// their sum, the right pose wins. Converged means right, and the pose is right.
+// in space the source's sensor saw through. Ranked by the larger of the two shares, the
+// polish left the right pose just over the reverse limit and the symmetric pose won
+// pass 1, to be refused by hasConverged(); ranked by their sum, the right pose is
+// polished within every limit and wins. Converged means right, and the pose is right.
 TEST(Revisits, ConvergedMeansRightOnASymmetricScene)
 {
   PCL_PHASER_REQUIRE_DATA(kDir + "full48.pcd");
