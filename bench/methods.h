@@ -41,9 +41,9 @@ struct VerificationFigures {
       std::numeric_limits<double>::quiet_NaN(); ///< free_space_violation
   double reverse_free_space = std::numeric_limits<double>::quiet_NaN();
   double constraint = std::numeric_limits<double>::quiet_NaN();
-  /** PhaserResult::verification_rank of the final pose, and of the best distant one */
+  /** PhaserResult::verification_rank and runner_up_rank */
   double rank = std::numeric_limits<double>::quiet_NaN();
-  double distant_rank = std::numeric_limits<double>::quiet_NaN();
+  double runner_up_rank = std::numeric_limits<double>::quiet_NaN();
 };
 
 /** \brief One registration's outcome (T maps the source into the target frame). */

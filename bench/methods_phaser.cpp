@@ -8,9 +8,6 @@
 
 #include <pcl/common/io.h>
 
-#include <algorithm>
-#include <cmath>
-
 namespace pcl::phaser {
 namespace bench {
 
@@ -24,16 +21,7 @@ VerificationFigures verificationOf(const PhaserResult& r)
   v.reverse_free_space = r.reverse_free_space_violation;
   v.constraint = r.constraint;
   v.rank = r.verification_rank;
-  for (const RotationHypothesis& h : r.hypotheses) {
-    const Eigen::Matrix4d d = r.transformation.inverse() * h.transformation;
-    const double angle =
-        Eigen::AngleAxisd(Eigen::Matrix3d(d.topLeftCorner<3, 3>())).angle();
-    if (angle < 10.0 * M_PI / 180.0 && d.topRightCorner<3, 1>().norm() < 2.0)
-      continue;
-    const double k = h.verification_rank;
-    if (!(k <= v.distant_rank))
-      v.distant_rank = k;
-  }
+  v.runner_up_rank = r.runner_up_rank;
   return v;
 }
 

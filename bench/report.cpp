@@ -60,7 +60,7 @@ void writeCsv(std::ostream& out, const std::vector<Trial>& trials)
   out << "set,sweep,value,pose,method,bandwidth,rre_deg,rte_m,time_ms,converged,"
          "success,"
          "score,nees,nees_rot,nees_trans,sigma_rot_deg,sigma_trans_m,overlap,"
-         "inliers,free_space,reverse_free_space,constraint,rank,distant_rank\n";
+         "inliers,free_space,reverse_free_space,constraint,rank,runner_up_rank\n";
   char line[512];
   for (const Trial& t : trials) {
     std::snprintf(
@@ -72,7 +72,7 @@ void writeCsv(std::ostream& out, const std::vector<Trial>& trials)
         t.nees_trans, t.sigma_rot_deg, t.sigma_trans_m, t.overlap,
         t.verification.inliers, t.verification.free_space,
         t.verification.reverse_free_space, t.verification.constraint,
-        t.verification.rank, t.verification.distant_rank);
+        t.verification.rank, t.verification.runner_up_rank);
     out << line;
   }
 }

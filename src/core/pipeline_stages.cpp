@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <vector>
 
 namespace pcl::phaser {
@@ -127,6 +128,21 @@ bool canVerify(const SourceContext& s)
   const double limit = kMaxThickness * s.target.index.radius();
   return s.p.sensor_centered && s.patches.thickness <= limit &&
          s.target.thickness <= limit;
+}
+
+/** The highest verification rank among \a hypotheses distinct from \a pose: turned
+ *  from it by more than the hypothesis separation, or moved by more than \a max_shift
+ *  meters (centered coordinates); -infinity when there is none. */
+double runnerUpRank(const std::vector<RotationHypothesis>& hypotheses, const Pose& pose,
+                    double max_shift)
+{
+  double best = -std::numeric_limits<double>::infinity();
+  for (const RotationHypothesis& h : hypotheses) {
+    const double angle = Eigen::AngleAxisd(pose.R.transpose() * h.rotation).angle();
+    if (angle > kHypothesisSeparation || (h.translation - pose.t).norm() > max_shift)
+      best = std::max(best, h.verification_rank);
+  }
+  return best;
 }
 
 /** \a pose refined by refinePoseWithin (within the hypothesis separation and two
@@ -378,10 +394,14 @@ void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
   e.reverse_free_space_violation = pose.v.reverse_free_space_violation;
   e.constraint = pose.v.constraint;
   e.verification_samples = static_cast<int>(s.samples.points.cols());
-  e.verified = e.verification_samples >= kMinVerificationSamples &&
-               (!p.sensor_centered || (pose.verifiable && meetsLimits(pose.v, p)));
   e.verification_score = pose.v.score;
   e.verification_rank = rank(pose.v);
+  // Distinct poses are those a polish (two coarse voxels) cannot join.
+  e.runner_up_rank =
+      runnerUpRank(e.hypotheses, pose, 2.0 * target.coarse.grid.voxel_size);
+  e.verified = e.verification_samples >= kMinVerificationSamples &&
+               (!p.sensor_centered || (pose.verifiable && meetsLimits(pose.v, p) &&
+                                       e.verification_rank > e.runner_up_rank));
 }
 
 } // namespace detail

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -170,6 +171,13 @@ struct PhaserResult {
    *  among poses within the verification limits, and among those outside them, the
    *  higher wins. */
   double verification_rank = 0.0;
+  /** \brief The highest verification_rank among the pass-1 hypotheses distinct from the
+   *  final pose (turned from it by more than 10 deg, or moved by more than two coarse
+   *  voxels: farther than a polish climbs), or -infinity when there is none. About
+   *  sensor origins, verified needs verification_rank above it: when a distinct pose
+   *  has as much evidence (a symmetric yard, a repeated facade, a narrow view), the
+   *  scene admits both and only the limits chose between them. */
+  double runner_up_rank = -std::numeric_limits<double>::infinity();
   /** \brief How well the matched samples pin the translation down in every direction:
    *  the smallest eigenvalue of sum w n n^T over the inliers with a normal, over the
    *  total weight, in [0, 1/3]; near 0 when a direction is left free (the ground
@@ -178,7 +186,8 @@ struct PhaserResult {
   double verification_radius = 0.0; ///< meters: half the coarse voxel
   int verification_samples = 0;     ///< source samples verified
   /** \brief Enough samples and, about sensor origins, inlier_fraction, constraint
-   *  and both free-space violations within PhaserParameters' limits. */
+   *  and both free-space violations within PhaserParameters' limits and
+   *  verification_rank above runner_up_rank. */
   bool verified = false;
   /** \brief Grid rotations around the last rotation peak, moved onto rotation
    *  (quaternions w, x, y, z), and their weights (correlation above the block's
