@@ -101,6 +101,9 @@ constexpr double kFreeSpaceMargin = 1.0;
 
 /** Inlier share one hypothesis at least must reach for verification to rank them. */
 constexpr double kMinRankingInliers = 0.1;
+/** Among hypotheses outside the verification limits, those with at least this share of
+ *  the most inliers any hypothesis has rank above the others. */
+constexpr double kMinSupport = 0.5;
 
 /** Largest surface thickness, in verification radii, at which poses are verified. */
 constexpr double kMaxThickness = 1.0 / 3.0;

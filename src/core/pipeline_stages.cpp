@@ -100,15 +100,22 @@ bool meetsLimits(const PoseVerification& v, const PhaserParameters& p)
 }
 
 /** Whether verification \a a ranks above \a b: a pose within the limits above one
- *  outside them, then by rank() (a wrong pose can match more samples than the right
- *  one, e.g. a 180 deg flip of a symmetric yard, and still see through the target's
- *  surfaces). */
+ *  outside them, then one with at least \a support of inliers above one without (a
+ *  pose that matches far less than another has little support, however little it
+ *  violates: noise puts the right pose's samples in space the target saw through, and
+ *  a pose whose samples land where the target saw nothing violates least), then by
+ *  rank() (a wrong pose can match more samples than the right one, e.g. a 180 deg flip
+ *  of a symmetric yard, and still see through the target's surfaces). */
 bool ranksAbove(const PoseVerification& a, const PoseVerification& b,
-                const PhaserParameters& p)
+                const PhaserParameters& p, double support)
 {
   const bool a_meets = meetsLimits(a, p), b_meets = meetsLimits(b, p);
   if (a_meets != b_meets)
     return a_meets;
+  const bool a_supported = a.inlier_fraction >= support;
+  const bool b_supported = b.inlier_fraction >= support;
+  if (a_supported != b_supported)
+    return a_supported;
   return rank(a) > rank(b);
 }
 
@@ -263,6 +270,7 @@ Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_
   std::vector<PoseVerification> v;
   translateHypotheses(s, e, v);
   bool verifiable = false;
+  double most_inliers = 0.0;
   for (std::size_t k = 0; k < e.hypotheses.size(); ++k) {
     RotationHypothesis& h = e.hypotheses[k];
     h.inlier_fraction = v[k].inlier_fraction;
@@ -271,13 +279,14 @@ Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_
     h.free_space_violation = v[k].free_space_violation;
     h.reverse_free_space_violation = v[k].reverse_free_space_violation;
     verifiable = verifiable || v[k].inlier_fraction >= kMinRankingInliers;
+    most_inliers = std::max(most_inliers, v[k].inlier_fraction);
   }
   verifiable = verifiable && canVerify(s);
   std::size_t best = 0;
   for (std::size_t k = 1; k < e.hypotheses.size(); ++k) {
     const RotationHypothesis& h = e.hypotheses[k];
     const bool better =
-        verifiable ? ranksAbove(v[k], v[best], s.p)
+        verifiable ? ranksAbove(v[k], v[best], s.p, kMinSupport * most_inliers)
                    : !h.from_orientation && h.overlap > e.hypotheses[best].overlap;
     if (better)
       best = k;

@@ -67,6 +67,20 @@ Cloud::Ptr alignSeenFrom(const Cloud& seen, const Cloud::Ptr& scan,
   return source;
 }
 
+/** \a scan perturbed by \a condition, seen from a random pose T (translation up to
+ *  2 m) and registered against \a scan by \a phaser; returns T. */
+Eigen::Matrix4d alignPerturbed(const Cloud::Ptr& scan,
+                               const pcl::phaser::bench::Condition& condition,
+                               std::mt19937& rng,
+                               pcl::PhaserRegistration<PointT, PointT>& phaser)
+{
+  const Eigen::Matrix4d T = randomPose(rng, 2.0);
+  Cloud perturbed = *scan;
+  pcl::phaser::bench::applyCondition(condition, perturbed, rng);
+  alignSeenFrom(perturbed, scan, T, phaser);
+  return T;
+}
+
 /** The 20-pose protocol of the end-to-end issue. */
 void runRandomPoses(const std::string& relative, int poses, unsigned seed)
 {
@@ -119,6 +133,32 @@ TEST(RealScans, KittiRandomPoses)
 TEST(RealScans, KittiSyntheticRandomPoses)
 {
   runRandomPoses("lidar/kitti_synthetic_gt/cloud049.ply", 20, 3);
+}
+
+// PSNR 40 dB (about 0.5 m of noise on this downsampled KITTI scan) leaves the surfaces
+// thin enough to verify, but every pose, the right one included, puts samples in space
+// the target saw through and breaks the free-space limit. Ranked by verification, a
+// 180 deg pose whose samples land where the target saw nothing won (benchmarks.md
+// 9.12). Now, among poses outside the limits, one that matches less than half as
+// much as the best-matching hypothesis ranks below it, and the range peak wins.
+TEST(RealScans, HeavyNoiseKeepsTheRangePeak)
+{
+  const std::string relative = "lidar/kitti_synthetic_gt/cloud049.ply";
+  PCL_PHASER_REQUIRE_DATA(relative);
+  const Cloud::Ptr scan = load(relative);
+  pcl::phaser::bench::Condition noise;
+  ASSERT_TRUE(pcl::phaser::bench::parseCondition("noise:40", noise));
+  std::mt19937 rng(5);
+  int ok = 0;
+  const int poses = 5;
+  for (int k = 0; k < poses; ++k) {
+    pcl::PhaserRegistration<PointT, PointT> phaser;
+    const Eigen::Matrix4d T = alignPerturbed(scan, noise, rng, phaser);
+    const Eigen::Matrix4d G = phaser.getFinalTransformation().cast<double>();
+    std::printf("  pose %d: RRE %7.3f deg RTE %6.3f m\n", k, rreDeg(G, T), rte(G, T));
+    ok += rreDeg(G, T) < 5.0 && rte(G, T) < 0.6;
+  }
+  EXPECT_GE(ok, poses - 1);
 }
 
 namespace {
@@ -352,11 +392,8 @@ TEST(RealScans, CovarianceConsistentOnKitti)
   int converged = 0, inside = 0;
   double sum_full = 0.0, sum_translation = 0.0;
   for (int k = 0; k < 16; ++k) {
-    const Eigen::Matrix4d T = randomPose(rng, 2.0);
-    Cloud perturbed = *scan;
-    pcl::phaser::bench::applyCondition(noise, perturbed, rng);
     pcl::PhaserRegistration<PointT, PointT> phaser;
-    alignSeenFrom(perturbed, scan, T, phaser);
+    const Eigen::Matrix4d T = alignPerturbed(scan, noise, rng, phaser);
     if (!phaser.hasConverged())
       continue;
     ++converged;
