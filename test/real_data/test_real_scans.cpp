@@ -135,12 +135,12 @@ TEST(RealScans, KittiSyntheticRandomPoses)
   runRandomPoses("lidar/kitti_synthetic_gt/cloud049.ply", 20, 3);
 }
 
-// PSNR 40 dB (about 0.5 m of noise on this downsampled KITTI scan) leaves the surfaces
-// thin enough to verify, but every pose, the right one included, puts samples in space
-// the target saw through and breaks the free-space limit. Ranked by verification, a
-// 180 deg pose whose samples land where the target saw nothing won (benchmarks.md
-// 9.12). Now, among poses outside the limits, one that matches less than half as
-// much as the best-matching hypothesis ranks below it, and the range peak wins.
+// PSNR 40 dB (0.8 m of noise per axis on this downsampled KITTI scan) leaves the
+// surfaces thin enough to verify, but every pose, the right one included, puts samples
+// in space the target saw through and breaks the free-space limit. Ranked by
+// verification, a 180 deg pose whose samples land where the target saw nothing won
+// (benchmarks.md 9.12). Now, among poses outside the limits, one that matches less than
+// half as much as the best-matching hypothesis ranks below it, and the range peak wins.
 TEST(RealScans, HeavyNoiseKeepsTheRangePeak)
 {
   const std::string relative = "lidar/kitti_synthetic_gt/cloud049.ply";
