@@ -168,7 +168,8 @@ struct PhaserResult {
   double reverse_free_space_violation = 0.0;
   /** \brief The order of poses where verification ranks them (about sensor origins):
    *  verification_score less 6 x the sum of both free-space violations, in [-12, 1];
-   *  among poses within the verification limits, and among those outside them, the
+   *  among poses within the verification limits, and among those outside them (first
+   *  those with at least half the inlier share of the best-matching hypothesis), the
    *  higher wins. */
   double verification_rank = 0.0;
   /** \brief The highest verification_rank among the pass-1 hypotheses distinct from the
