@@ -127,7 +127,11 @@ inline bool hasExtension(const std::string& path, const char* ext)
   return (path.size() > n && !strcasecmp(path.c_str() + path.size() - n, ext));
 }
 
-inline int parseOptions(int argc, char** argv, Options& opt)
+/** \brief Collect the file arguments (SOURCE TARGET) and set the switches (--demo,
+ * -icp, --icp-point, --json); rejects unknown options, options without their value
+ * and a wrong number of files.
+ * \return kOk or kUsage (after fail()) */
+inline int parseFilesAndSwitches(int argc, char** argv, Options& opt)
 {
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
@@ -156,6 +160,14 @@ inline int parseOptions(int argc, char** argv, Options& opt)
     opt.source = files[0];
     opt.target = files[1];
   }
+  return (kOk);
+}
+
+/** \brief Parse the integer options (-b, --grid, --passes, --threads, --seed), each
+ * checked against its range.
+ * \return kOk or kUsage (after fail()) */
+inline int parseIntegerOptions(int argc, char** argv, Options& opt)
+{
   const struct {
     const Spec& spec;
     long lo, hi;
@@ -176,6 +188,14 @@ inline int parseOptions(int argc, char** argv, Options& opt)
                    text.c_str(), o.spec.name, o.lo, o.hi));
     o.value = static_cast<int>(v);
   }
+  return (kOk);
+}
+
+/** \brief Parse the other valued registration options: --center, --icp-dist, --size.
+ * \return kOk or kUsage (after fail()) */
+inline int parseValueOptions(int argc, char** argv, Options& opt)
+{
+  std::string text;
   if (optionValue(argc, argv, *findSpec("--center"), text)) {
     if (text != "sensor" && text != "centroid" && text != "auto")
       return (fail(kUsage, "Invalid --center '%s': expected sensor, centroid or auto.",
@@ -201,6 +221,14 @@ inline int parseOptions(int argc, char** argv, Options& opt)
     opt.width = static_cast<int>(w);
     opt.height = static_cast<int>(h);
   }
+  return (kOk);
+}
+
+/** \brief Parse the path options (--gt, -o, -m, --screenshot) and check their formats;
+ * the demo's overlay defaults to default_demo_overlay.
+ * \return kOk, kUsage, or kOutput when a screenshot cannot be saved (after fail()) */
+inline int parsePathOptions(int argc, char** argv, Options& opt)
+{
   if (optionValue(argc, argv, *findSpec("--gt"), opt.gt) && opt.demo)
     return (fail(kUsage, "--gt does not apply to the demo (its truth is known)."));
   if (optionValue(argc, argv, *findSpec("-o"), opt.output) &&
@@ -222,6 +250,22 @@ inline int parseOptions(int argc, char** argv, Options& opt)
       return (fail(kOutput, "Cannot save --screenshot: %s", why.c_str()));
   }
   return (kOk);
+}
+
+/** \brief Parse the whole command line into \a opt, checking in this order: the
+ * files and switches, the integer options, the other values, the paths. The first
+ * problem is reported with fail() and ends the parsing.
+ * \return kOk, or the exit code of the first problem (kUsage or kOutput) */
+inline int parseOptions(int argc, char** argv, Options& opt)
+{
+  int code = parseFilesAndSwitches(argc, argv, opt);
+  if (code == kOk)
+    code = parseIntegerOptions(argc, argv, opt);
+  if (code == kOk)
+    code = parseValueOptions(argc, argv, opt);
+  if (code == kOk)
+    code = parsePathOptions(argc, argv, opt);
+  return (code);
 }
 
 } // namespace align_tool
