@@ -135,24 +135,22 @@ bool SimulatedScene::castRay(const Eigen::Vector3d& origin,
   return castUnitRay(origin, direction / norm, max_range, hit);
 }
 
-bool SimulatedScene::castUnitRay(const Eigen::Vector3d& o, const Eigen::Vector3d& d,
-                                 double max_range, RayHit& hit) const
+void SimulatedScene::intersectGround(const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                                     Nearest& best) const
 {
-  // Strict "< best" tests everywhere: nudge the limit so a hit at max_range counts.
-  double best = std::nextafter(max_range, std::numeric_limits<double>::infinity());
-  int best_id = -2;
-  Eigen::Vector3d best_normal = Eigen::Vector3d::UnitZ();
-  if (with_ground_ && std::abs(d.z()) > kParallel) {
-    const double t = -o.z() / d.z();
-    if (t > kTMin && t < best) {
-      best = t;
-      best_id = -1;
-      best_normal = Eigen::Vector3d(0.0, 0.0, o.z() >= 0.0 ? 1.0 : -1.0);
-    }
+  if (!(with_ground_ && std::abs(d.z()) > kParallel))
+    return;
+  const double t = -o.z() / d.z();
+  if (t > kTMin && t < best.t) {
+    best.t = t;
+    best.id = -1;
+    best.normal = Eigen::Vector3d(0.0, 0.0, o.z() >= 0.0 ? 1.0 : -1.0);
   }
+}
 
-  // 2-D DDA through the grid cells the ray's xy projection crosses.
-  double t_enter = 0.0, t_leave = best;
+bool SimulatedScene::clipToGrid(const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                                double& t_enter, double& t_leave) const
+{
   bool in_grid = grid_nx_ > 0;
   const Eigen::Vector2d grid_max =
       grid_min_ + cell_size_ * Eigen::Vector2d(grid_nx_, grid_ny_);
@@ -167,59 +165,76 @@ bool SimulatedScene::castUnitRay(const Eigen::Vector3d& o, const Eigen::Vector3d
     t_enter = std::max(t_enter, ta);
     t_leave = std::min(t_leave, tb);
   }
-  if (in_grid && t_enter <= t_leave) {
-    int cell[2], step[2];
-    double next[2], delta[2];
-    for (int a = 0; a < 2; ++a) {
-      const int n = a == 0 ? grid_nx_ : grid_ny_;
-      const double p = o[a] + t_enter * d[a];
-      cell[a] = std::clamp(
-          static_cast<int>(std::floor((p - grid_min_[a]) / cell_size_)), 0, n - 1);
-      if (d[a] > kParallel) {
-        step[a] = 1;
-        next[a] = (grid_min_[a] + (cell[a] + 1) * cell_size_ - o[a]) / d[a];
-        delta[a] = cell_size_ / d[a];
-      } else if (d[a] < -kParallel) {
-        step[a] = -1;
-        next[a] = (grid_min_[a] + cell[a] * cell_size_ - o[a]) / d[a];
-        delta[a] = -cell_size_ / d[a];
-      } else {
-        step[a] = 0;
-        next[a] = delta[a] = std::numeric_limits<double>::infinity();
-      }
-    }
-    double t;
-    Eigen::Vector3d normal;
-    for (;;) {
-      const std::size_t c = static_cast<std::size_t>(cell[1]) * grid_nx_ + cell[0];
-      for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
-        const int id = cell_items_[k];
-        if (intersectRay(primitives_[id], o, d, kTMin, best, t, normal)) {
-          best = t;
-          best_id = id;
-          best_normal = normal;
-        }
-      }
-      const int a = next[0] < next[1] ? 0 : 1;
-      const double exit = next[a];
-      if (best <= exit || exit > t_leave)
-        break;
-      const double z = o.z() + exit * d.z();
-      if ((d.z() > 0.0 && z > top_) || (d.z() < 0.0 && z < bottom_))
-        break; // above or below every solid from here on
-      cell[a] += step[a];
-      next[a] += delta[a];
-      if (cell[a] < 0 || cell[a] >= (a == 0 ? grid_nx_ : grid_ny_))
-        break;
+  return (in_grid && t_enter <= t_leave);
+}
+
+void SimulatedScene::traverseGrid(const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                                  double t_enter, double t_leave, Nearest& best) const
+{
+  int cell[2], step[2];
+  double next[2], delta[2];
+  for (int a = 0; a < 2; ++a) {
+    const int n = a == 0 ? grid_nx_ : grid_ny_;
+    const double p = o[a] + t_enter * d[a];
+    cell[a] = std::clamp(static_cast<int>(std::floor((p - grid_min_[a]) / cell_size_)),
+                         0, n - 1);
+    if (d[a] > kParallel) {
+      step[a] = 1;
+      next[a] = (grid_min_[a] + (cell[a] + 1) * cell_size_ - o[a]) / d[a];
+      delta[a] = cell_size_ / d[a];
+    } else if (d[a] < -kParallel) {
+      step[a] = -1;
+      next[a] = (grid_min_[a] + cell[a] * cell_size_ - o[a]) / d[a];
+      delta[a] = -cell_size_ / d[a];
+    } else {
+      step[a] = 0;
+      next[a] = delta[a] = std::numeric_limits<double>::infinity();
     }
   }
-  if (best_id == -2)
+  double t;
+  Eigen::Vector3d normal;
+  for (;;) {
+    const std::size_t c = static_cast<std::size_t>(cell[1]) * grid_nx_ + cell[0];
+    for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
+      const int id = cell_items_[k];
+      if (intersectRay(primitives_[id], o, d, kTMin, best.t, t, normal)) {
+        best.t = t;
+        best.id = id;
+        best.normal = normal;
+      }
+    }
+    const int a = next[0] < next[1] ? 0 : 1;
+    const double exit = next[a];
+    if (best.t <= exit || exit > t_leave)
+      break;
+    const double z = o.z() + exit * d.z();
+    if ((d.z() > 0.0 && z > top_) || (d.z() < 0.0 && z < bottom_))
+      break; // above or below every solid from here on
+    cell[a] += step[a];
+    next[a] += delta[a];
+    if (cell[a] < 0 || cell[a] >= (a == 0 ? grid_nx_ : grid_ny_))
+      break;
+  }
+}
+
+bool SimulatedScene::castUnitRay(const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                                 double max_range, RayHit& hit) const
+{
+  // Strict "< best" tests everywhere: nudge the limit so a hit at max_range counts.
+  Nearest best;
+  best.t = std::nextafter(max_range, std::numeric_limits<double>::infinity());
+  intersectGround(o, d, best);
+  // 2-D DDA through the grid cells the ray's xy projection crosses.
+  double t_enter = 0.0, t_leave = best.t;
+  if (clipToGrid(o, d, t_enter, t_leave))
+    traverseGrid(o, d, t_enter, t_leave, best);
+  if (best.id == -2)
     return false;
-  hit.range = best;
-  hit.point = o + best * d;
-  hit.normal = best_normal;
-  hit.primitive = best_id;
-  hit.reflectivity = best_id >= 0 ? primitives_[best_id].reflectivity
+  hit.range = best.t;
+  hit.point = o + best.t * d;
+  hit.normal = best.normal;
+  hit.primitive = best.id;
+  hit.reflectivity = best.id >= 0 ? primitives_[best.id].reflectivity
                                   : groundReflectivity(hit.point.x(), hit.point.y());
   return true;
 }

@@ -139,6 +139,32 @@ private:
   bool castUnitRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                    double max_range, RayHit& hit) const;
 
+  /** \brief The nearest surface found so far along a ray. */
+  struct Nearest {
+    double t = 0.0; ///< its distance; hits must be strictly closer to replace it
+    int id = -2;    ///< primitive index, -1 for the ground, -2 for none yet
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); ///< outward unit normal
+  };
+
+  /** \brief Replace \a best by the ground plane's hit (when the scene has a ground,
+   * the ray is not parallel to it and the hit lies in (kTMin, best.t)). */
+  void intersectGround(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                       Nearest& best) const;
+
+  /** \brief Clip a ray's xy projection to the grid: narrows [t_enter, t_leave] to the
+   * distances at which it is over the grid.
+   * \return false when the ray never is over the grid within the interval (or there
+   * is no grid) */
+  bool clipToGrid(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                  double& t_enter, double& t_leave) const;
+
+  /** \brief 2-D DDA through the grid cells the ray's xy projection crosses from
+   * t_enter on, intersecting their solids; replaces \a best by any closer hit and stops
+   * once the next cell lies beyond best.t or t_leave, above or below every solid, or
+   * outside the grid. Requires clipToGrid() to have returned true for the interval. */
+  void traverseGrid(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                    double t_enter, double t_leave, Nearest& best) const;
+
   std::vector<ScenePrimitive> primitives_;
   bool with_ground_ = true;
   double cell_size_ = 4.0;
