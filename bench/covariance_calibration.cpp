@@ -26,6 +26,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <random>
 #include <set>
 #include <sstream>
 #include <string>
@@ -63,86 +64,123 @@ Eigen::Vector3d centroid(const pcl::PointCloud<pcl::PointXYZI>& cloud, double ce
   return sum / static_cast<double>(cell > 0.0 ? seen.size() : cloud.size());
 }
 
+/** The command line: -seeds N, -bandwidths B1,B2,..., -scan FILE. */
+struct Arguments {
+  int seeds = 30;
+  std::vector<int> bandwidths{32, 64, 128};
+  std::string scan_path;
+};
+
+/** Parses the command line into \a args; false (after the usage line) on an unknown
+ *  option. */
+bool parseArguments(int argc, char** argv, Arguments& args)
+{
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (!std::strcmp(argv[i], "-seeds"))
+      args.seeds = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "-scan"))
+      args.scan_path = argv[i + 1];
+    else if (!std::strcmp(argv[i], "-bandwidths")) {
+      args.bandwidths.clear();
+      std::stringstream list(argv[i + 1]);
+      std::string item;
+      while (std::getline(list, item, ','))
+        args.bandwidths.push_back(std::atoi(item.c_str()));
+    } else {
+      std::fprintf(stderr, "usage: %s [-seeds N] [-bandwidths 32,64,128]\n", argv[0]);
+      return false;
+    }
+  }
+  return true;
+}
+
+/** Loads the scan of -scan into \a scan, non-finite points removed; false (after the
+ *  reader's message) when it cannot be read. */
+bool loadScan(const std::string& path, pcl::PointCloud<pcl::PointXYZI>& scan)
+{
+  std::string error;
+  if (!pcl::phaser::loadCloud(path, scan, &error)) {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return false;
+  }
+  pcl::Indices kept;
+  pcl::removeNaNFromPointCloud(scan, scan, kept);
+  return true;
+}
+
+/** The pair of \a seed: with a \a scan, the scan seen again from a random pose drawn
+ *  from \a rng with PSNR 50 dB noise; otherwise makeDemoPair(seed). */
+pcl::phaser::ScanPair makePair(const pcl::PointCloud<pcl::PointXYZI>::Ptr& scan,
+                               int seed, std::mt19937& rng)
+{
+  pcl::phaser::ScanPair pair;
+  if (!scan)
+    return pcl::phaser::makeDemoPair(static_cast<unsigned>(seed));
+  const Eigen::Matrix4d T = pcl::phaser::bench::randomPose(rng, 2.0);
+  pcl::PointCloud<pcl::PointXYZI> perturbed = *scan;
+  pcl::phaser::bench::Condition noise;
+  pcl::phaser::bench::parseCondition("noise:50", noise);
+  pcl::phaser::bench::applyCondition(noise, perturbed, rng);
+  pcl::transformPointCloud(perturbed, pair.source, Eigen::Matrix4d(T.inverse()));
+  pair.target = *scan;
+  pair.T_target_source = T;
+  return pair;
+}
+
+/** Registers \a source to \a target at bandwidth \a b and prints the CSV row: the
+ *  errors against \a truth, the two covariances and the rotated source centroids. */
+void registerAndPrint(int seed, int b, const Eigen::Matrix4d& truth,
+                      const pcl::PointCloud<pcl::PointXYZI>::Ptr& source,
+                      const pcl::PointCloud<pcl::PointXYZI>::Ptr& target)
+{
+  pcl::PhaserRegistration<pcl::PointXYZI, pcl::PointXYZI> phaser;
+  phaser.setBandwidth(b);
+  phaser.setInputSource(source);
+  phaser.setInputTarget(target);
+  pcl::PointCloud<pcl::PointXYZI> aligned;
+  phaser.align(aligned);
+  const Eigen::Matrix4d T = phaser.getFinalTransformation().cast<double>();
+  const Eigen::AngleAxisd omega(Eigen::Matrix3d(truth.topLeftCorner<3, 3>() *
+                                                T.topLeftCorner<3, 3>().transpose()));
+  const Eigen::Vector3d e = omega.angle() * omega.axis();
+  const Eigen::Vector3d nu = truth.topRightCorner<3, 1>() - T.topRightCorner<3, 1>();
+  std::printf("%d,%d,%d,%.3f,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e", seed, b,
+              phaser.hasConverged() ? 1 : 0, phaser.getResult().translation_score,
+              e.x(), e.y(), e.z(), nu.x(), nu.y(), nu.z());
+  printMatrix(phaser.getRotationUncertainty().tangentCovariance());
+  printMatrix(phaser.getResult().translation_covariance);
+  const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
+  const Eigen::Vector3d pc = R * centroid(*source, 0.0),
+                        v1 = R * centroid(*source, 1.0),
+                        v4 = R * centroid(*source, 4.0);
+  std::printf(",%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n", pc.x(), pc.y(), pc.z(),
+              v1.x(), v1.y(), v1.z(), v4.x(), v4.y(), v4.z());
+  std::fflush(stdout);
+}
+
 } // namespace
 
 int main(int argc, char** argv)
 {
-  int seeds = 30;
-  std::vector<int> bandwidths{32, 64, 128};
-  std::string scan_path;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "-seeds"))
-      seeds = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "-scan"))
-      scan_path = argv[i + 1];
-    else if (!std::strcmp(argv[i], "-bandwidths")) {
-      bandwidths.clear();
-      std::stringstream list(argv[i + 1]);
-      std::string item;
-      while (std::getline(list, item, ','))
-        bandwidths.push_back(std::atoi(item.c_str()));
-    } else {
-      std::fprintf(stderr, "usage: %s [-seeds N] [-bandwidths 32,64,128]\n", argv[0]);
-      return 1;
-    }
-  }
+  Arguments args;
+  if (!parseArguments(argc, argv, args))
+    return 1;
   std::printf("seed,bandwidth,converged,score,ex,ey,ez,tx,ty,tz,"
               "r00,r01,r02,r11,r12,r22,t00,t01,t02,t11,t12,t22,"
               "px,py,pz,v1x,v1y,v1z,v4x,v4y,v4z\n");
   pcl::PointCloud<pcl::PointXYZI>::Ptr scan;
-  if (!scan_path.empty()) {
+  if (!args.scan_path.empty()) {
     scan = pcl::make_shared<pcl::PointCloud<pcl::PointXYZI>>();
-    std::string error;
-    if (!pcl::phaser::loadCloud(scan_path, *scan, &error)) {
-      std::fprintf(stderr, "%s\n", error.c_str());
+    if (!loadScan(args.scan_path, *scan))
       return 2;
-    }
-    pcl::Indices kept;
-    pcl::removeNaNFromPointCloud(*scan, *scan, kept);
   }
   std::mt19937 rng(1);
-  for (int seed = 1; seed <= seeds; ++seed) {
-    pcl::phaser::ScanPair pair;
-    if (scan) { // the scan seen again from a random pose, PSNR 50 dB
-      const Eigen::Matrix4d T = pcl::phaser::bench::randomPose(rng, 2.0);
-      pcl::PointCloud<pcl::PointXYZI> perturbed = *scan;
-      pcl::phaser::bench::Condition noise;
-      pcl::phaser::bench::parseCondition("noise:50", noise);
-      pcl::phaser::bench::applyCondition(noise, perturbed, rng);
-      pcl::transformPointCloud(perturbed, pair.source, Eigen::Matrix4d(T.inverse()));
-      pair.target = *scan;
-      pair.T_target_source = T;
-    } else
-      pair = pcl::phaser::makeDemoPair(static_cast<unsigned>(seed));
+  for (int seed = 1; seed <= args.seeds; ++seed) {
+    const pcl::phaser::ScanPair pair = makePair(scan, seed, rng);
     auto source = pcl::make_shared<pcl::PointCloud<pcl::PointXYZI>>(pair.source);
     auto target = pcl::make_shared<pcl::PointCloud<pcl::PointXYZI>>(pair.target);
-    for (int b : bandwidths) {
-      pcl::PhaserRegistration<pcl::PointXYZI, pcl::PointXYZI> phaser;
-      phaser.setBandwidth(b);
-      phaser.setInputSource(source);
-      phaser.setInputTarget(target);
-      pcl::PointCloud<pcl::PointXYZI> aligned;
-      phaser.align(aligned);
-      const Eigen::Matrix4d T = phaser.getFinalTransformation().cast<double>();
-      const Eigen::Matrix4d& truth = pair.T_target_source;
-      const Eigen::AngleAxisd omega(Eigen::Matrix3d(
-          truth.topLeftCorner<3, 3>() * T.topLeftCorner<3, 3>().transpose()));
-      const Eigen::Vector3d e = omega.angle() * omega.axis();
-      const Eigen::Vector3d nu =
-          truth.topRightCorner<3, 1>() - T.topRightCorner<3, 1>();
-      std::printf("%d,%d,%d,%.3f,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e", seed, b,
-                  phaser.hasConverged() ? 1 : 0, phaser.getResult().translation_score,
-                  e.x(), e.y(), e.z(), nu.x(), nu.y(), nu.z());
-      printMatrix(phaser.getRotationUncertainty().tangentCovariance());
-      printMatrix(phaser.getResult().translation_covariance);
-      const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
-      const Eigen::Vector3d pc = R * centroid(*source, 0.0),
-                            v1 = R * centroid(*source, 1.0),
-                            v4 = R * centroid(*source, 4.0);
-      std::printf(",%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n", pc.x(), pc.y(),
-                  pc.z(), v1.x(), v1.y(), v1.z(), v4.x(), v4.y(), v4.z());
-      std::fflush(stdout);
-    }
+    for (int b : args.bandwidths)
+      registerAndPrint(seed, b, pair.T_target_source, source, target);
   }
   return 0;
 }
