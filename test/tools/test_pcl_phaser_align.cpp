@@ -80,6 +80,16 @@ struct ToolRun {
   std::string out, err;
 };
 
+/** \brief Parses what a run printed as one JSON object, into \a j, and checks it as a
+ * stage (checkStage()), with \a T its transformation. */
+void checkJsonRun(const ToolRun& r, const Eigen::Matrix4d* truth, Json& j,
+                  Eigen::Matrix4d& T)
+{
+  ASSERT_TRUE(JsonReader(r.out).document(j)) << "stdout is not one JSON value:\n"
+                                             << r.out;
+  ASSERT_NO_FATAL_FAILURE(checkStage(j, truth, T));
+}
+
 std::string quote(const std::string& s)
 {
   std::string q = "'";
@@ -162,6 +172,56 @@ protected:
   }
 
   static std::string path(const std::string& name) { return ((dir_ / name).string()); }
+
+  /** \brief Write the unfit inputs of BadInputsFailWithAMessage to the temporary
+   * directory: garbage, empty, headerless or lying PCD and PLY files, and a non-rigid
+   * transform. */
+  static void writeBadInputFiles()
+  {
+    std::ofstream(path("garbage.pcd")) << "\x01\x02 this is not a point cloud \xff";
+    std::ofstream(path("empty.pcd"));
+    std::ofstream(path("x.xyz")) << "1 2 3\n";
+    std::ofstream(path("notrigid.txt")) << "1 2 3 4\n5 6 7 8\n9 10 11 12\n0 0 0 1\n";
+    const std::string header =
+        "VERSION .7\nFIELDS %s\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 "
+        "1\nWIDTH %d\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS "
+        "%d\nDATA ascii\n";
+    char buffer[512];
+    std::snprintf(buffer, sizeof(buffer), header.c_str(), "x y z", 0, 0);
+    std::ofstream(path("zero.pcd")) << buffer;
+    std::snprintf(buffer, sizeof(buffer), header.c_str(), "a b c", 2, 2);
+    std::ofstream(path("noxyz.pcd")) << buffer << "1 2 3\n4 5 6\n";
+    std::snprintf(buffer, sizeof(buffer), header.c_str(), "x y z", 2, 2);
+    std::ofstream(path("nan.pcd")) << buffer << "nan nan nan\nnan nan nan\n";
+    // Files that crash, abort or exhaust PCL 1.13.0's readers in-process.
+    std::ofstream(path("no_fields.pcd"))
+        << "VERSION .7\nWIDTH 1\nPOINTS 1\nDATA ascii\n1 2 3\n";
+    std::snprintf(buffer, sizeof(buffer), header.c_str(), "x y z", 1000000000,
+                  1000000000);
+    std::ofstream(path("lying_points.pcd"))
+        << std::string(buffer).replace(std::string(buffer).find("ascii"), 5, "binary")
+        << "123456789012";
+    const std::string ply = "ply\nformat ascii 1.0\n";
+    const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
+    const std::string grid = "obj_info num_cols 2\nobj_info num_rows 2\n";
+    const std::string range_grid =
+        "element range_grid 4\nproperty list uchar int vertex_indices\nend_header\n";
+    std::ofstream(path("grid_too_small.ply"))
+        << ply << "obj_info num_cols 1\nobj_info num_rows 1\nelement vertex 2\n"
+        << xyz << "end_header\n1 2 3\n4 5 6\n";
+    std::ofstream(path("indented_obj_info.ply"))
+        << ply << " obj_info num_cols 2\nelement vertex 1\n"
+        << xyz << "end_header\n1 2 3\n";
+    std::ofstream(path("blue_before_red.ply"))
+        << ply << "element vertex 2\n"
+        << xyz
+        << "property uchar blue\nproperty uchar green\nproperty uchar red\nend_header\n"
+        << "1 2 3 4 5 6\n6 7 8 9 10 11\n";
+    for (const char* index : {"357913941", "357913942"}) // a crash, a silent wrong read
+      std::ofstream(path(std::string("range_grid_") + index + ".ply"))
+          << ply << grid << "element vertex 2\n"
+          << xyz << range_grid << "1 2 3\n4 5 6\n1 " << index << "\n0\n0\n1 0\n";
+  }
 };
 
 fs::path PclPhaserAlign::dir_;
@@ -213,13 +273,10 @@ TEST_F(PclPhaserAlign, DemoWithoutArgumentsMeetsItsBoundsAndWritesTheOverlay)
 TEST_F(PclPhaserAlign, DemoJsonHasTheErrorsOfBothStages)
 {
   const ToolRun r = run("--demo --json -m demo_overlay.ply");
-  Json j;
-  ASSERT_TRUE(JsonReader(r.out).document(j)) << "stdout is not one JSON value:\n"
-                                             << r.out;
-  ASSERT_EQ(j.type, Json::Type::Object);
   const pcl::phaser::ScanPair pair = pcl::phaser::makeDemoPair(1);
+  Json j;
   Eigen::Matrix4d T, T_icp;
-  ASSERT_NO_FATAL_FAILURE(checkStage(j, &pair.T_target_source, T));
+  ASSERT_NO_FATAL_FAILURE(checkJsonRun(r, &pair.T_target_source, j, T));
   ASSERT_TRUE(j.get("icp"));
   ASSERT_NO_FATAL_FAILURE(checkStage(*j.get("icp"), &pair.T_target_source, T_icp));
   EXPECT_LT(j.get("rre_deg")->number, 2.0); // the demo's global bound (see the tool)
@@ -237,11 +294,8 @@ TEST_F(PclPhaserAlign, JsonIsOneObjectWithTheKeys)
   const ToolRun r = run("src.pcd tgt.pcd --gt truth.txt -icp --json");
   EXPECT_EQ(r.code, 0) << r.err;
   Json j;
-  ASSERT_TRUE(JsonReader(r.out).document(j)) << "stdout is not one JSON value:\n"
-                                             << r.out;
-  ASSERT_EQ(j.type, Json::Type::Object);
   Eigen::Matrix4d T, T_icp;
-  ASSERT_NO_FATAL_FAILURE(checkStage(j, &truth_, T));
+  ASSERT_NO_FATAL_FAILURE(checkJsonRun(r, &truth_, j, T));
   EXPECT_TRUE(j.get("converged")->boolean);
   for (const char* key : {"rotation_score", "translation_score", "passes"})
     ASSERT_TRUE(j.get(key) && j.get(key)->isNumber()) << key;
@@ -270,11 +324,10 @@ TEST_F(PclPhaserAlign, GroundTruthOnRealScans)
           quote(dataPath(rel + "relative.txt")) + " --json --center auto");
   EXPECT_EQ(r.code, 0)
       << r.err; // auto: these LiDAR scans are projected about their origin
-  Json j;
-  ASSERT_TRUE(JsonReader(r.out).document(j)) << r.out;
   Eigen::Matrix4d truth, T;
   ASSERT_TRUE(pcl::phaser::loadTransform(dataPath(rel + "relative.txt"), truth));
-  ASSERT_NO_FATAL_FAILURE(checkStage(j, &truth, T));
+  Json j;
+  ASSERT_NO_FATAL_FAILURE(checkJsonRun(r, &truth, j, T));
   EXPECT_LT(j.get("rre_deg")->number, 1.0);
   EXPECT_LT(j.get("rte_m")->number, 0.3);
 }
@@ -284,9 +337,8 @@ TEST_F(PclPhaserAlign, OutputKeepsEveryFieldAndPoint)
   const ToolRun r = run("src.pcd tgt.pcd -o aligned.pcd --json");
   ASSERT_EQ(r.code, 0) << r.err;
   Json j;
-  ASSERT_TRUE(JsonReader(r.out).document(j)) << r.out;
   Eigen::Matrix4d T;
-  ASSERT_NO_FATAL_FAILURE(checkStage(j, nullptr, T));
+  ASSERT_NO_FATAL_FAILURE(checkJsonRun(r, nullptr, j, T));
   pcl::PCLPointCloud2 blob;
   std::string error;
   ASSERT_TRUE(pcl::phaser::loadCloud(path("aligned.pcd"), blob, &error)) << error;
@@ -326,51 +378,7 @@ TEST_F(PclPhaserAlign, ReadsPlyAndKittiBin)
 
 TEST_F(PclPhaserAlign, BadInputsFailWithAMessage)
 {
-  {
-    std::ofstream(path("garbage.pcd")) << "\x01\x02 this is not a point cloud \xff";
-    std::ofstream(path("empty.pcd"));
-    std::ofstream(path("x.xyz")) << "1 2 3\n";
-    std::ofstream(path("notrigid.txt")) << "1 2 3 4\n5 6 7 8\n9 10 11 12\n0 0 0 1\n";
-    const std::string header =
-        "VERSION .7\nFIELDS %s\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 "
-        "1\nWIDTH %d\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS "
-        "%d\nDATA ascii\n";
-    char buffer[512];
-    std::snprintf(buffer, sizeof(buffer), header.c_str(), "x y z", 0, 0);
-    std::ofstream(path("zero.pcd")) << buffer;
-    std::snprintf(buffer, sizeof(buffer), header.c_str(), "a b c", 2, 2);
-    std::ofstream(path("noxyz.pcd")) << buffer << "1 2 3\n4 5 6\n";
-    std::snprintf(buffer, sizeof(buffer), header.c_str(), "x y z", 2, 2);
-    std::ofstream(path("nan.pcd")) << buffer << "nan nan nan\nnan nan nan\n";
-    // Files that crash, abort or exhaust PCL 1.13.0's readers in-process.
-    std::ofstream(path("no_fields.pcd"))
-        << "VERSION .7\nWIDTH 1\nPOINTS 1\nDATA ascii\n1 2 3\n";
-    std::snprintf(buffer, sizeof(buffer), header.c_str(), "x y z", 1000000000,
-                  1000000000);
-    std::ofstream(path("lying_points.pcd"))
-        << std::string(buffer).replace(std::string(buffer).find("ascii"), 5, "binary")
-        << "123456789012";
-    const std::string ply = "ply\nformat ascii 1.0\n";
-    const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
-    const std::string grid = "obj_info num_cols 2\nobj_info num_rows 2\n";
-    const std::string range_grid =
-        "element range_grid 4\nproperty list uchar int vertex_indices\nend_header\n";
-    std::ofstream(path("grid_too_small.ply"))
-        << ply << "obj_info num_cols 1\nobj_info num_rows 1\nelement vertex 2\n"
-        << xyz << "end_header\n1 2 3\n4 5 6\n";
-    std::ofstream(path("indented_obj_info.ply"))
-        << ply << " obj_info num_cols 2\nelement vertex 1\n"
-        << xyz << "end_header\n1 2 3\n";
-    std::ofstream(path("blue_before_red.ply"))
-        << ply << "element vertex 2\n"
-        << xyz
-        << "property uchar blue\nproperty uchar green\nproperty uchar red\nend_header\n"
-        << "1 2 3 4 5 6\n6 7 8 9 10 11\n";
-    for (const char* index : {"357913941", "357913942"}) // a crash, a silent wrong read
-      std::ofstream(path(std::string("range_grid_") + index + ".ply"))
-          << ply << grid << "element vertex 2\n"
-          << xyz << range_grid << "1 2 3\n4 5 6\n1 " << index << "\n0\n0\n1 0\n";
-  }
+  writeBadInputFiles();
   const std::pair<const char*, int> cases[] = {
       {"src.pcd", 1},
       {"src.pcd tgt.pcd extra.pcd", 1},
@@ -447,9 +455,8 @@ TEST_F(PclPhaserAlign, FailedRegistrationExitsThreeAndStillReports)
   const ToolRun r = run("origin.pcd tgt.pcd --json -o never.pcd");
   EXPECT_EQ(r.code, 3) << r.err;
   Json j;
-  ASSERT_TRUE(JsonReader(r.out).document(j)) << r.out;
   Eigen::Matrix4d T;
-  ASSERT_NO_FATAL_FAILURE(checkStage(j, nullptr, T));
+  ASSERT_NO_FATAL_FAILURE(checkJsonRun(r, nullptr, j, T));
   EXPECT_FALSE(j.get("converged")->boolean);
   EXPECT_FALSE(fs::exists(path("never.pcd")));
   EXPECT_NE(r.err.find("did not converge"), std::string::npos) << r.err;
