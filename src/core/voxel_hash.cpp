@@ -98,10 +98,21 @@ PointIndex::PointIndex(const Eigen::Matrix3Xd& points, double radius,
     if (normals.cols() != 0)
       normals_.col(static_cast<Eigen::Index>(k)) = normals.col(groups.order[k]);
   }
-  cells_.reserve(groups.size());
-  for (std::size_t g = 0; g < groups.size(); ++g)
-    cells_.emplace(groups.keys[g],
-                   std::make_pair(groups.offsets[g], groups.offsets[g + 1]));
+  // Open addressing with linear probing, at most half full: a look-up reads one slot
+  // or a few neighbors in memory (std::unordered_map chased a list node per look-up).
+  std::size_t capacity = 16;
+  slot_shift_ = 60;
+  while (capacity < 2 * groups.size()) {
+    capacity *= 2;
+    --slot_shift_;
+  }
+  slots_.assign(capacity, Cell{});
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    std::size_t i = slotOf(groups.keys[g]);
+    while (slots_[i].key != kEmptyKey)
+      i = (i + 1) & (capacity - 1);
+    slots_[i] = {groups.keys[g], groups.offsets[g], groups.offsets[g + 1]};
+  }
 }
 
 double PointIndex::nearestSquaredDistance(const Eigen::Vector3d& q) const
@@ -152,15 +163,26 @@ Eigen::Index PointIndex::nearest(const Eigen::Vector3d& q,
   return found;
 }
 
+std::size_t PointIndex::slotOf(std::int64_t key) const
+{
+  // Fibonacci hashing: the top bits of the product depend on every bit of the key.
+  return static_cast<std::size_t>(
+      (static_cast<std::uint64_t>(key) * 0x9E3779B97F4A7C15ull) >> slot_shift_);
+}
+
 void PointIndex::scanCell(std::int64_t key, const Eigen::Vector3d& q,
                           const Eigen::Vector3d& normal, double min_cosine,
                           double& best, Eigen::Index& found) const
 {
-  const auto it = cells_.find(key);
-  if (it == cells_.end())
-    return;
+  std::size_t i = slotOf(key);
+  while (slots_[i].key != key) {
+    if (slots_[i].key == kEmptyKey)
+      return;
+    i = (i + 1) & (slots_.size() - 1);
+  }
+  const Cell& cell = slots_[i];
   const bool check = normals_.cols() != 0 && !normal.isZero();
-  for (Eigen::Index k = it->second.first; k < it->second.second; ++k) {
+  for (Eigen::Index k = cell.first; k < cell.last; ++k) {
     if (check && !normals_.col(k).isZero() && normals_.col(k).dot(normal) < min_cosine)
       continue;
     const double d2 = (points_.col(k) - q).squaredNorm();

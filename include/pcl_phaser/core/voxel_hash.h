@@ -7,7 +7,6 @@
 #include <Eigen/Core>
 
 #include <cstdint>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -70,6 +69,8 @@ public:
   bool empty() const { return points_.cols() == 0; }
 
 private:
+  /** First slot of \a key's probe sequence. */
+  std::size_t slotOf(std::int64_t key) const;
   /** The nearest point of cell \a key to \a q closer than \a best (squared, updated)
    *  with an agreeing normal, into \a found. */
   void scanCell(std::int64_t key, const Eigen::Vector3d& q,
@@ -79,7 +80,15 @@ private:
   double radius_ = 0.0;
   Eigen::Matrix3Xd points_;
   Eigen::Matrix3Xd normals_; ///< empty, or one per point
-  std::unordered_map<std::int64_t, std::pair<Eigen::Index, Eigen::Index>> cells_;
+  /** Key of a free slot: voxel keys are never negative. */
+  static constexpr std::int64_t kEmptyKey = -1;
+  /** A cell of the table: its voxel key and its points [first, last) in points_. */
+  struct Cell {
+    std::int64_t key = kEmptyKey;
+    Eigen::Index first = 0, last = 0;
+  };
+  std::vector<Cell> slots_; ///< a power of two of them, at most half used
+  int slot_shift_ = 60;     ///< 64 - log2(slots_.size())
 };
 
 } // namespace pcl::phaser
