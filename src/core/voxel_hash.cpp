@@ -135,31 +135,37 @@ Eigen::Index PointIndex::nearest(const Eigen::Vector3d& q,
   std::int64_t key = 0;
   if (points_.cols() == 0 || !voxelKey(q, radius_, key))
     return -1;
-  // Gaps from q to the faces of its cell: a neighbor cell's points lie at least the
-  // gaps along its offset axes away. Slightly shrunk, so rounding never skips a cell
-  // that holds a candidate.
+  // Squared gaps from q to the faces of its cell, per axis and offset -1, 0, 1: a
+  // neighbor cell's points lie at least the sum over its axes away. Slightly shrunk,
+  // so rounding never skips a cell that holds a candidate.
   const Eigen::Array3d below = q.array() - (q.array() / radius_).floor() * radius_;
-  const Eigen::Array3d low = (below * (1.0 - 1e-9)).max(0.0);
-  const Eigen::Array3d high = ((radius_ - below) * (1.0 - 1e-9)).max(0.0);
+  double gap2[3][3];
+  for (int a = 0; a < 3; ++a) {
+    const double low = std::max(0.0, below[a] * (1.0 - 1e-9));
+    const double high = std::max(0.0, (radius_ - below[a]) * (1.0 - 1e-9));
+    gap2[a][0] = low * low;
+    gap2[a][1] = 0.0;
+    gap2[a][2] = high * high;
+  }
   double best = radius_ * radius_;
   Eigen::Index found = -1;
-  // The own cell first: its nearest point bounds the search and skips most neighbors.
+  // The own cell first, then the nearest slab and row first: near points bound the
+  // search early, and a slab or row beyond the bound is skipped whole.
   scanCell(key, q, normal, min_cosine, best, found);
-  for (int dx = -1; dx <= 1; ++dx)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dz = -1; dz <= 1; ++dz) {
-        if (dx == 0 && dy == 0 && dz == 0)
-          continue;
-        const Eigen::Array3i d(dx, dy, dz);
-        double gap2 = 0.0;
-        for (int a = 0; a < 3; ++a) {
-          const double g = d[a] < 0 ? low[a] : (d[a] > 0 ? high[a] : 0.0);
-          gap2 += g * g;
-        }
-        if (gap2 > best)
-          continue;
-        scanCell(offsetKey(key, dx, dy, dz), q, normal, min_cosine, best, found);
-      }
+  constexpr int kOrder[3] = {0, -1, 1};
+  for (const int dx : kOrder) {
+    const double gx = gap2[0][dx + 1];
+    if (gx > best)
+      continue;
+    for (const int dy : kOrder) {
+      const double gxy = gx + gap2[1][dy + 1];
+      if (gxy > best)
+        continue;
+      for (const int dz : kOrder)
+        if ((dx != 0 || dy != 0 || dz != 0) && gxy + gap2[2][dz + 1] <= best)
+          scanCell(offsetKey(key, dx, dy, dz), q, normal, min_cosine, best, found);
+    }
+  }
   return found;
 }
 
