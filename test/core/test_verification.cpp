@@ -40,13 +40,11 @@ Eigen::Matrix3Xd wall(double d, double half, double h)
   return p;
 }
 
-} // namespace
-
-TEST(PointIndex, NearestDistanceMatchesBruteForceWithinTheRadius)
+/** Checks PointIndex(points, radius) against brute force at every query; returns how
+ *  many queries have a point within the radius. */
+int expectNearestAsBruteForce(const Eigen::Matrix3Xd& points,
+                              const Eigen::Matrix3Xd& queries, double radius)
 {
-  const Eigen::Matrix3Xd points = randomPoints(2000, 5.0, 1);
-  const Eigen::Matrix3Xd queries = randomPoints(300, 5.5, 2);
-  const double radius = 0.7;
   const PointIndex index(points, radius);
   int found = 0;
   for (Eigen::Index q = 0; q < queries.cols(); ++q) {
@@ -60,6 +58,17 @@ TEST(PointIndex, NearestDistanceMatchesBruteForceWithinTheRadius)
       EXPECT_TRUE(std::isinf(got));
     }
   }
+  return found;
+}
+
+} // namespace
+
+TEST(PointIndex, NearestDistanceMatchesBruteForceWithinTheRadius)
+{
+  const Eigen::Matrix3Xd points = randomPoints(2000, 5.0, 1);
+  const Eigen::Matrix3Xd queries = randomPoints(300, 5.5, 2);
+  const double radius = 0.7;
+  const int found = expectNearestAsBruteForce(points, queries, radius);
   EXPECT_GT(found, 50); // the test exercised both branches
   EXPECT_LT(found, 300);
 }
@@ -95,6 +104,31 @@ TEST(PointIndex, NearestWithNormalsMatchesBruteForce)
   }
   EXPECT_GT(found, 100);
   EXPECT_LT(found, 400);
+}
+
+TEST(PointIndex, ClustersFarApartOnEveryAxisMatchBruteForce)
+{
+  // Clusters hundreds of meters apart on each axis, negative coordinates included:
+  // their cell keys differ in the high bits of every axis field, and the queries, half
+  // near a cluster and half between them, probe occupied and empty slots of the cell
+  // table.
+  const Eigen::Matrix3Xd unit = randomPoints(3000, 1.0, 6);
+  const Eigen::Matrix3Xd noise = randomPoints(400, 1.5, 7);
+  Eigen::Matrix3Xd points(3, unit.cols()), queries(3, noise.cols());
+  const auto center = [](Eigen::Index i) {
+    return Eigen::Vector3d(-900.0 + 300.0 * (i % 7), 250.0 * ((i / 7) % 3) - 250.0,
+                           -400.0 * ((i / 21) % 2));
+  };
+  for (Eigen::Index i = 0; i < unit.cols(); ++i)
+    points.col(i) = center(i % 42) + unit.col(i);
+  for (Eigen::Index q = 0; q < noise.cols(); ++q)
+    queries.col(q) =
+        center(q % 42) + noise.col(q) +
+        (q % 2 ? Eigen::Vector3d(150.0, 0.0, 0.0) : Eigen::Vector3d::Zero());
+  const double radius = 0.3;
+  const int found = expectNearestAsBruteForce(points, queries, radius);
+  EXPECT_GT(found, 20);  // near-cluster queries that find a point ...
+  EXPECT_LT(found, 200); // ... and between-cluster ones that do not
 }
 
 TEST(PointIndex, EmptyAndNonFiniteQueriesFindNothing)
