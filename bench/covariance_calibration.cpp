@@ -113,9 +113,9 @@ bool loadScan(const std::string& path, pcl::PointCloud<pcl::PointXYZI>& scan)
 pcl::phaser::ScanPair makePair(const pcl::PointCloud<pcl::PointXYZI>::Ptr& scan,
                                int seed, std::mt19937& rng)
 {
-  pcl::phaser::ScanPair pair;
   if (!scan)
     return pcl::phaser::makeDemoPair(static_cast<unsigned>(seed));
+  pcl::phaser::ScanPair pair;
   const Eigen::Matrix4d T = pcl::phaser::bench::randomPose(rng, 2.0);
   pcl::PointCloud<pcl::PointXYZI> perturbed = *scan;
   pcl::phaser::bench::Condition noise;

@@ -100,12 +100,11 @@ PointIndex::PointIndex(const Eigen::Matrix3Xd& points, double radius,
   }
   // Open addressing with linear probing, at most half full: a look-up reads one slot
   // or a few neighbors in memory (std::unordered_map chased a list node per look-up).
-  std::size_t capacity = 16;
-  slot_shift_ = 60;
-  while (capacity < 2 * groups.size()) {
-    capacity *= 2;
-    --slot_shift_;
-  }
+  int bits = 4;
+  while ((std::size_t(1) << bits) < 2 * groups.size())
+    ++bits;
+  const std::size_t capacity = std::size_t(1) << bits;
+  slot_shift_ = 64 - bits;
   slots_.assign(capacity, Cell{});
   for (std::size_t g = 0; g < groups.size(); ++g) {
     std::size_t i = slotOf(groups.keys[g]);
