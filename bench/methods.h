@@ -41,9 +41,10 @@ struct VerificationFigures {
       std::numeric_limits<double>::quiet_NaN(); ///< free_space_violation
   double reverse_free_space = std::numeric_limits<double>::quiet_NaN();
   double constraint = std::numeric_limits<double>::quiet_NaN();
-  /** PhaserResult::verification_rank and runner_up_rank */
+  /** PhaserResult::verification_rank, runner_up_rank and runner_up_error */
   double rank = std::numeric_limits<double>::quiet_NaN();
   double runner_up_rank = std::numeric_limits<double>::quiet_NaN();
+  double runner_up_error = std::numeric_limits<double>::quiet_NaN();
 };
 
 /** \brief One registration's outcome (T maps the source into the target frame). */

@@ -22,6 +22,7 @@ VerificationFigures verificationOf(const PhaserResult& r)
   v.constraint = r.constraint;
   v.rank = r.verification_rank;
   v.runner_up_rank = r.runner_up_rank;
+  v.runner_up_error = r.runner_up_error;
   return v;
 }
 

@@ -177,11 +177,11 @@ void writeCsvRow(std::ostream& out, const RevisitTrial& t)
   std::snprintf(
       line, sizeof(line),
       "%s,%s,%s,%g,%g,%g,%.6f,%.6f,%d,%.3f,%.6g,%.6g,%.4g,%.4g,%.4g,%.4g,%.4g,"
-      "%.4g\n",
+      "%.4g,%.4g\n",
       t.method.c_str(), t.pair.source.c_str(), t.pair.target.c_str(), t.pair.dist,
       t.pair.rel_rot, t.pair.overlap, t.rre, t.rte, t.converged ? 1 : 0, t.ms, t.score,
       t.overlap_est, v.inliers, v.free_space, v.reverse_free_space, v.constraint,
-      v.rank, v.runner_up_rank);
+      v.rank, v.runner_up_rank, v.runner_up_error);
   out << line << std::flush; // a long run can be read while it goes
 }
 
@@ -447,7 +447,7 @@ int runRevisitsStudy(int argc, char** argv)
     csv = std::make_unique<std::ofstream>(o.csv);
     *csv << "method,source,target,dist,rel_rot,overlap,rre,rte,converged,ms,score,"
             "overlap_est,inliers,free_space,reverse_free_space,constraint,rank,"
-            "runner_up_rank\n";
+            "runner_up_rank,runner_up_error\n";
   }
   const std::vector<RevisitTrial> trials = runTrials(o, folder, pairs, csv.get());
   std::ofstream md_file;

@@ -111,6 +111,11 @@ constexpr double kMaxThickness = 1.0 / 3.0;
 /** Weight of a free-space violation (of either sensor) against an inlier in rank(). */
 constexpr double kViolationWeight = 6.0;
 
+/** The final pose counts as distinct from the best other hypothesis when its rank
+ *  exceeds that one's by more than this many standard errors of the difference
+ *  (PhaserResult::runner_up_error): the one-sided 99 % point of a normal. */
+constexpr double kDistinctErrors = 2.33;
+
 /** Saturation of the occupancy grids: a voxel with a fraction of a point's weight is
  *  already almost full, so occupancy is binary and the near-sensor density (each scan
  *  is densest around its own sensor) does not vote for stacking the sensors. */
@@ -199,6 +204,17 @@ Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_
 
 /** Later passes from the viewpoint of the estimate, kept while they verify no worse. */
 Pose reprojectionPasses(const SourceContext& s, Pose pose, PhaserResult& e);
+
+/** How a verified pose ranks (pipeline_verdict.cpp): the closeness-weighted inlier
+ *  share less kViolationWeight x both free-space violations. */
+double rank(const PoseVerification& v);
+
+/** Whether \a v meets the verification limits of \a p (pipeline_verdict.cpp). */
+bool meetsLimits(const PoseVerification& v, const PhaserParameters& p);
+
+/** The final \a pose and its verification figures into \a e, and whether it is
+ *  verified (pipeline_verdict.cpp). */
+void verdict(const SourceContext& s, const Pose& pose, PhaserResult& e);
 
 /** The final refinement, shift, uncertainty and verification decision, into \a e. */
 void finalStage(const SourceContext& s, Pose pose, PhaserResult& e);

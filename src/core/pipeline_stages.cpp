@@ -78,27 +78,6 @@ std::vector<RotationHypothesis> rotationHypotheses(const SourceContext& s,
   return out;
 }
 
-/** How a verified pose ranks: its closeness-weighted inlier share less a multiple of
- *  its free-space violations, of the source's samples in space the target saw through
- *  and of the target's samples in space the source saw through. A violation is strong
- *  evidence against the pose and each sensor's is separate evidence; a sample without
- *  a target neighbor is weak (occlusion, partial overlap), hence the factor. */
-double rank(const PoseVerification& v)
-{
-  return v.score -
-         kViolationWeight * (v.free_space_violation + v.reverse_free_space_violation);
-}
-
-/** Whether \a v meets the verification limits of \a p (inliers, constraint and both
- *  free-space violations): a pose that could be declared right. */
-bool meetsLimits(const PoseVerification& v, const PhaserParameters& p)
-{
-  return v.inlier_fraction >= p.min_inlier_fraction &&
-         v.constraint >= p.min_constraint &&
-         std::max(v.free_space_violation, v.reverse_free_space_violation) <=
-             p.max_free_space_violation;
-}
-
 /** Whether verification \a a ranks above \a b: a pose within the limits above one
  *  outside them, then one with at least \a support of inliers above one without (a
  *  pose that matches far less than another has little support, however little it
@@ -135,21 +114,6 @@ bool canVerify(const SourceContext& s)
   const double limit = kMaxThickness * s.target.index.radius();
   return s.p.sensor_centered && s.patches.thickness <= limit &&
          s.target.thickness <= limit;
-}
-
-/** The highest verification rank among \a hypotheses distinct from \a pose: turned
- *  from it by more than the hypothesis separation, or moved by more than \a max_shift
- *  meters (centered coordinates); -infinity when there is none. */
-double runnerUpRank(const std::vector<RotationHypothesis>& hypotheses, const Pose& pose,
-                    double max_shift)
-{
-  double best = -std::numeric_limits<double>::infinity();
-  for (const RotationHypothesis& h : hypotheses) {
-    const double angle = Eigen::AngleAxisd(pose.R.transpose() * h.rotation).angle();
-    if (angle > kHypothesisSeparation || (h.translation - pose.t).norm() > max_shift)
-      best = std::max(best, h.verification_rank);
-  }
-  return best;
 }
 
 /** \a pose refined by refinePoseWithin (within the hypothesis separation and two
@@ -396,21 +360,7 @@ void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
   if (pose.verifiable)
     pose = polish(s, pose, e, p.num_threads);
   rotationSamples(C, peak, pose.R, e);
-  e.rotation = pose.R;
-  e.translation = pose.t;
-  e.inlier_fraction = pose.v.inlier_fraction;
-  e.free_space_violation = pose.v.free_space_violation;
-  e.reverse_free_space_violation = pose.v.reverse_free_space_violation;
-  e.constraint = pose.v.constraint;
-  e.verification_samples = static_cast<int>(s.samples.points.cols());
-  e.verification_score = pose.v.score;
-  e.verification_rank = rank(pose.v);
-  // Distinct poses are those a polish (two coarse voxels) cannot join.
-  e.runner_up_rank =
-      runnerUpRank(e.hypotheses, pose, 2.0 * target.coarse.grid.voxel_size);
-  e.verified = e.verification_samples >= kMinVerificationSamples &&
-               (!p.sensor_centered || (pose.verifiable && meetsLimits(pose.v, p) &&
-                                       e.verification_rank > e.runner_up_rank));
+  verdict(s, pose, e);
 }
 
 } // namespace detail

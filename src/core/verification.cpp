@@ -67,23 +67,63 @@ FreeSpace freeSpace(const Eigen::Matrix3Xd& points, int bandwidth, double margin
   return f;
 }
 
+std::vector<double> sampleViolations(const FreeSpace& seen,
+                                     const Eigen::Matrix3Xd& samples,
+                                     const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
+                                     int num_threads)
+{
+  std::vector<double> out(static_cast<std::size_t>(samples.cols()), 0.0);
+  if (seen.bandwidth <= 0 || samples.cols() == 0)
+    return out;
+  const Eigen::Matrix3Xd moved = (R * samples).colwise() + t;
+  const std::vector<int> cells = sphereCells(moved, seen.bandwidth, num_threads);
+  for (Eigen::Index i = 0; i < samples.cols(); ++i) {
+    const int c = cells[static_cast<std::size_t>(i)];
+    const double nearest = c >= 0 ? seen.nearest[static_cast<std::size_t>(c)] : 0.0;
+    if (nearest > 0.0 && moved.col(i).norm() < nearest - seen.margin)
+      out[static_cast<std::size_t>(i)] = 1.0;
+  }
+  return out;
+}
+
 double freeSpaceViolation(const FreeSpace& seen, const Eigen::Matrix3Xd& samples,
                           const Eigen::VectorXd& weights, const Eigen::Matrix3d& R,
                           const Eigen::Vector3d& t, int num_threads)
 {
   if (seen.bandwidth <= 0 || samples.cols() == 0 || weights.size() != samples.cols())
     return 0.0;
-  const Eigen::Matrix3Xd moved = (R * samples).colwise() + t;
-  const std::vector<int> cells = sphereCells(moved, seen.bandwidth, num_threads);
+  const std::vector<double> v = sampleViolations(seen, samples, R, t, num_threads);
   double violating = 0.0, total = 0.0;
   for (Eigen::Index i = 0; i < samples.cols(); ++i) {
-    const int c = cells[static_cast<std::size_t>(i)];
-    const double nearest = c >= 0 ? seen.nearest[static_cast<std::size_t>(c)] : 0.0;
-    if (nearest > 0.0 && moved.col(i).norm() < nearest - seen.margin)
-      violating += weights[i];
+    violating += v[static_cast<std::size_t>(i)] * weights[i];
     total += weights[i];
   }
   return total > 0.0 ? violating / total : 0.0;
+}
+
+std::vector<double> sampleCloseness(const PointIndex& target,
+                                    const VerificationSamples& s,
+                                    const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
+                                    int num_threads)
+{
+  const Eigen::Index n = s.points.cols();
+  std::vector<double> closeness(static_cast<std::size_t>(n), 0.0);
+  if (n == 0 || target.empty())
+    return closeness;
+  const bool with_normals = s.normals.cols() != 0;
+  const double r2 = target.radius() * target.radius();
+  const int threads = n < kMinParallelSamples ? 1 : std::max(1, num_threads);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 256) if (threads > 1)
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Vector3d q = R * s.points.col(i) + t;
+    const double d2 =
+        with_normals
+            ? target.nearestSquaredDistance(q, R * s.normals.col(i), kMinNormalCosine)
+            : target.nearestSquaredDistance(q);
+    if (std::isfinite(d2))
+      closeness[static_cast<std::size_t>(i)] = std::max(1e-12, 1.0 - d2 / r2);
+  }
+  return closeness;
 }
 
 PoseVerification verifyPose(const PointIndex& target, const Eigen::Matrix3Xd& samples,
@@ -108,21 +148,8 @@ PoseVerification verifyPose(const PointIndex& target, const VerificationSamples&
   const Eigen::Index n = samples.cols();
   if (n == 0 || target.empty())
     return v;
-  const double r2 = target.radius() * target.radius();
-  // Integer counts and per-sample terms summed in index order: the same for any thread
-  // count.
-  std::vector<double> closeness(static_cast<std::size_t>(n), 0.0);
-  const int threads = n < kMinParallelSamples ? 1 : std::max(1, num_threads);
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 256) if (threads > 1)
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Vector3d q = R * samples.col(i) + t;
-    const double d2 =
-        with_normals
-            ? target.nearestSquaredDistance(q, R * s.normals.col(i), kMinNormalCosine)
-            : target.nearestSquaredDistance(q);
-    if (std::isfinite(d2))
-      closeness[static_cast<std::size_t>(i)] = std::max(1e-12, 1.0 - d2 / r2);
-  }
+  // Per-sample terms summed in index order: the same for any thread count.
+  const std::vector<double> closeness = sampleCloseness(target, s, R, t, num_threads);
   double inliers = 0.0, sum = 0.0, total = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {
     const double c = closeness[static_cast<std::size_t>(i)];

@@ -214,6 +214,44 @@ TEST(FreeSpace, SamplesInFrontOfWhatTheSensorSawViolateAndThoseBehindDoNot)
   EXPECT_EQ(on_it.inlier_fraction, 1.0);
 }
 
+// The per-sample terms are what the verification sums: the weighted mean of the
+// closeness is the score, the weighted share of violations the free-space violation.
+TEST(VerifyPose, PerSampleTermsSumToTheVerification)
+{
+  const Eigen::Matrix3Xd target = wall(10.0, 4.0, 0.1);
+  const FreeSpace seen = freeSpace(target, 64, 0.5);
+  const PointIndex index(target, 0.3);
+  // Half the samples on the wall, half 5 m in front of it (in space the sensor saw
+  // through, with no target point near).
+  const Eigen::Matrix3Xd on = wall(9.95, 1.0, 0.25), in_front = wall(5.0, 1.0, 0.25);
+  const int n = static_cast<int>(on.cols());
+  Eigen::Matrix3Xd samples(3, 2 * n);
+  samples << on, in_front;
+  const Eigen::VectorXd w = Eigen::VectorXd::LinSpaced(samples.cols(), 1.0, 3.0);
+  const VerificationSamples s{samples, w, {}};
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d t = Eigen::Vector3d::Zero();
+  const std::vector<double> closeness = sampleCloseness(index, s, I, t);
+  const std::vector<double> violations = sampleViolations(seen, samples, I, t);
+  ASSERT_EQ(closeness.size(), 2u * n);
+  ASSERT_EQ(violations.size(), 2u * n);
+  double score = 0.0, violating = 0.0;
+  for (int i = 0; i < 2 * n; ++i) {
+    EXPECT_EQ(closeness[i] > 0.0, i < n) << i;
+    EXPECT_EQ(violations[i], i < n ? 0.0 : 1.0) << i;
+    score += w[i] * closeness[i];
+    violating += w[i] * violations[i];
+  }
+  const PoseVerification v = verifyPose(index, s, I, t, 1, &seen);
+  EXPECT_NEAR(v.score, score / w.sum(), 1e-12);
+  EXPECT_NEAR(v.free_space_violation, violating / w.sum(), 1e-12);
+  EXPECT_NEAR(v.inlier_fraction, w.head(n).sum() / w.sum(), 1e-12);
+  for (int threads : {2, 8})
+    EXPECT_EQ(sampleCloseness(index, s, I, t, threads), closeness);
+  EXPECT_EQ(sampleViolations(FreeSpace{}, samples, I, t),
+            std::vector<double>(2u * n, 0.0)); // nothing seen: no violation
+}
+
 TEST(VerifyPose, OnlyTargetPointsWithAgreeingNormalsMatch)
 {
   const Eigen::Matrix3Xd target = wall(5.0, 2.0, 0.1);

@@ -63,6 +63,19 @@ Cloud::Ptr scan(const std::string& name)
   return pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + name);
 }
 
+/** The 90 deg azimuth sector of \a full about \a center_deg, as a sensor with a narrow
+ *  field of view would see it. */
+Cloud::Ptr quarterSector(const Cloud& full, double center_deg)
+{
+  auto sector = pcl::make_shared<Cloud>();
+  const double center = center_deg * M_PI / 180.0;
+  for (const auto& p : full)
+    if (std::abs(std::remainder(std::atan2(p.y, p.x) - center, 2.0 * M_PI)) <=
+        0.25 * M_PI)
+      sector->push_back(p);
+  return sector;
+}
+
 /** Registers with defaults; \a why gets the verification figures. */
 Eigen::Matrix4d align(const Cloud::ConstPtr& source, const Cloud::ConstPtr& target,
                       bool& converged, std::string* why = nullptr)
@@ -80,8 +93,25 @@ Eigen::Matrix4d align(const Cloud::ConstPtr& source, const Cloud::ConstPtr& targ
            std::to_string(phaser.getResult().free_space_violation) + " / " +
            std::to_string(phaser.getResult().reverse_free_space_violation) + ", rank " +
            std::to_string(phaser.getResult().verification_rank) + " (runner-up " +
-           std::to_string(phaser.getResult().runner_up_rank) + ")";
+           std::to_string(phaser.getResult().runner_up_rank) + ", difference error " +
+           std::to_string(phaser.getResult().runner_up_error) + ")";
   return phaser.getFinalTransformation().cast<double>();
+}
+
+/** The 90 deg sector of \a source about \a center_deg against \a target: when it
+ *  converges, the pose is right (5 deg / 2 m). */
+void expectRightIfConverged(const std::string& source, double center_deg,
+                            const std::string& target)
+{
+  bool converged = true;
+  std::string why;
+  const Errors e = errors(
+      align(quarterSector(*scan(source), center_deg), scan(target), converged, &why),
+      referencePose(source, target));
+  if (converged) {
+    EXPECT_LT(e.rotation_deg, 5.0) << why;
+    EXPECT_LT(e.translation_m, 2.0) << why;
+  }
 }
 
 } // namespace
@@ -173,19 +203,16 @@ TEST(Revisits, ConvergedMeansRightOnASymmetricScene)
 TEST(Revisits, NarrowViewOfASymmetricYardDoesNotClaimTheMirror)
 {
   PCL_PHASER_REQUIRE_DATA(kDir + "full36.pcd");
-  const auto full = scan("full36.pcd");
-  auto sector = pcl::make_shared<Cloud>();
-  const double center = 26.9 * M_PI / 180.0;
-  for (const auto& p : *full)
-    if (std::abs(std::remainder(std::atan2(p.y, p.x) - center, 2.0 * M_PI)) <=
-        0.25 * M_PI)
-      sector->push_back(p);
-  bool converged = true;
-  std::string why;
-  const Errors e = errors(align(sector, scan("full108.pcd"), converged, &why),
-                          referencePose("full36.pcd", "full108.pcd"));
-  if (converged) {
-    EXPECT_LT(e.rotation_deg, 5.0) << why;
-    EXPECT_LT(e.translation_m, 2.0) << why;
-  }
+  expectRightIfConverged("full36.pcd", 26.9, "full108.pcd");
+}
+
+// A 90 deg sector of full6 against full78, 13.5 m away (a sector of the partial-revisit
+// study, -source-wedge 0.25, benchmarks.md 9.11). No pass-1 hypothesis is near the
+// right pose; the 180 deg flip of the yard meets every verification limit and ranks
+// above every other hypothesis, but by less than the choice of the sector's few hundred
+// samples explains (runner_up_error), so hasConverged() must not claim it.
+TEST(Revisits, NarrowViewFlipThatBarelyOutranksTheRunnerUpDoesNotConverge)
+{
+  PCL_PHASER_REQUIRE_DATA(kDir + "full6.pcd");
+  expectRightIfConverged("full6.pcd", 175.8091, "full78.pcd");
 }

@@ -179,6 +179,12 @@ struct PhaserResult {
    *  has as much evidence (a symmetric yard, a repeated facade, a narrow view), the
    *  scene admits both and only the limits chose between them. */
   double runner_up_rank = -std::numeric_limits<double>::infinity();
+  /** \brief Standard error of verification_rank - runner_up_rank from the samples'
+   *  paired differences under the two poses (0 without a runner-up, and about
+   * centroids). About sensor origins, verified needs the difference above 2.33 times it
+   * (one-sided 99 %): a small source (a narrow view, a few hundred samples) matched
+   * about as well by a distinct pose is not told apart by the choice of samples. */
+  double runner_up_error = 0.0;
   /** \brief How well the matched samples pin the translation down in every direction:
    *  the smallest eigenvalue of sum w n n^T over the inliers with a normal, over the
    *  total weight, in [0, 1/3]; near 0 when a direction is left free (the ground
@@ -188,7 +194,7 @@ struct PhaserResult {
   int verification_samples = 0;     ///< source samples verified
   /** \brief Enough samples and, about sensor origins, inlier_fraction, constraint
    *  and both free-space violations within PhaserParameters' limits and
-   *  verification_rank above runner_up_rank. */
+   *  verification_rank above runner_up_rank by more than 2.33 runner_up_error. */
   bool verified = false;
   /** \brief Grid rotations around the last rotation peak, moved onto rotation
    *  (quaternions w, x, y, z), and their weights (correlation above the block's

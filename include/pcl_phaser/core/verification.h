@@ -68,6 +68,14 @@ double freeSpaceViolation(const FreeSpace& seen, const Eigen::Matrix3Xd& samples
                           const Eigen::VectorXd& weights, const Eigen::Matrix3d& R,
                           const Eigen::Vector3d& t, int num_threads = 1);
 
+/** \brief Per sample of \a samples (3 x m, moved by q = R s + t into the frame of
+ *  \a seen): 1 when it lies in space the sensor of \a seen saw through (as
+ *  freeSpaceViolation), else 0; all 0 for an empty FreeSpace. */
+std::vector<double> sampleViolations(const FreeSpace& seen,
+                                     const Eigen::Matrix3Xd& samples,
+                                     const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
+                                     int num_threads = 1);
+
 /** \brief Samples with what verifyPose needs besides their position. */
 struct VerificationSamples {
   Eigen::Matrix3Xd points;  ///< 3 x m, e.g. voxelCentroids
@@ -78,6 +86,15 @@ struct VerificationSamples {
 /** \brief Cosine of the largest angle between the rotated normal of a sample and the
  *  normal of a target point that still match (about 45 deg). */
 constexpr double kMinNormalCosine = 0.7;
+
+/** \brief Per sample of \a samples under the pose (R, t): max(1e-12, 1 - d^2 / r^2)
+ *  when a target point lies within the index radius r at distance d (with an agreeing
+ *  normal when both have normals, as verifyPose), else 0. Deterministic for any
+ *  \a num_threads. */
+std::vector<double> sampleCloseness(const PointIndex& target,
+                                    const VerificationSamples& samples,
+                                    const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
+                                    int num_threads = 1);
 
 /** \brief The same with a weight per sample (the shares are weighted sums over the
  *  total weight) and, when both the samples and the index have normals, only target
