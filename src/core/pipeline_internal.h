@@ -124,6 +124,11 @@ constexpr double kOccupancySaturation = 0.05;
 /** Patches of the orientation histogram, in coarse voxels. */
 constexpr double kPatchVoxels = 1.0;
 
+/** Translation peaks beyond the highest that each pass-1 rotation contributes when no
+ *  pose meets the verification limits, and their least separation in coarse voxels. */
+constexpr int kExtraTranslationPeaks = 2;
+constexpr int kPeakSeparation = 3;
+
 /** Gauss-Newton steps of refinePose on the final pose. */
 constexpr int kPolishIterations = 10;
 

@@ -171,6 +171,21 @@ void runTasks(const std::vector<int>& tasks, int num_threads, const Task& task)
       std::rethrow_exception(f);
 }
 
+/** Adds the wall time \a wall of a region of tasks to e's translation and verification
+ *  times, split in the proportions of the tasks' own times. */
+void splitWallTime(const std::vector<PhaserEstimate>& times, double wall,
+                   PhaserEstimate& e)
+{
+  double translation = 0.0, verification = 0.0;
+  for (const PhaserEstimate& t : times) {
+    translation += t.translation_ms;
+    verification += t.verification_ms;
+  }
+  const double busy = translation + verification;
+  e.translation_ms += busy > 0.0 ? wall * translation / busy : 0.0;
+  e.verification_ms += busy > 0.0 ? wall * verification / busy : 0.0;
+}
+
 /** Every hypothesis through the coarse translation search and verification, then
  *  (where poses can be verified) the polish, into e.hypotheses and \a v: before the
  *  polish the right hypothesis often ranks low (a voxel and a grid cell off, its
@@ -205,18 +220,58 @@ void translateHypotheses(const SourceContext& s, PhaserEstimate& e,
       pose = polish(s, pose, times[k], 1);
     });
   v.assign(n, PoseVerification{});
-  double translation = 0.0, verification = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     e.hypotheses[k].rotation = poses[k].R;
     e.hypotheses[k].translation = poses[k].t;
     v[k] = poses[k].v;
-    translation += times[k].translation_ms;
-    verification += times[k].verification_ms;
   }
-  const double wall = msSince(start);
-  const double busy = translation + verification;
-  e.translation_ms += busy > 0.0 ? wall * translation / busy : 0.0;
-  e.verification_ms += busy > 0.0 ? wall * verification / busy : 0.0;
+  splitWallTime(times, msSince(start), e);
+}
+
+/** When no pass-1 pose meets the verification limits: the next kExtraTranslationPeaks
+ *  distinct peaks (kPeakSeparation coarse voxels apart) of every hypothesis's coarse
+ *  translation correlation, at its grid rotation in \a rotations, each a hypothesis of
+ *  its own, verified and polished as in pass 1 and appended to e.hypotheses and \a v.
+ *  On partial views a rotation near the truth can have its highest translation peak
+ *  meters off (benchmarks.md 9.10). */
+void widenHypotheses(const SourceContext& s,
+                     const std::vector<Eigen::Matrix3d>& rotations, PhaserEstimate& e,
+                     std::vector<PoseVerification>& v)
+{
+  const std::size_t n = rotations.size();
+  std::vector<PhaserEstimate> times(n);
+  std::vector<std::vector<Pose>> extra(n);
+  std::vector<int> all(n);
+  for (std::size_t k = 0; k < n; ++k)
+    all[k] = static_cast<int>(k);
+  const auto start = Clock::now();
+  runTasks(all, s.p.num_threads, [&](int k) {
+    const auto begin = Clock::now();
+    const Eigen::Matrix3d& R = rotations[static_cast<std::size_t>(k)];
+    const SpatialVolume C = correlateSpectraWhitened(
+        s.target.coarse, occupancySpectrum(s.target.coarse.grid, R * s.points, 1),
+        s.p.whitening, 1);
+    std::vector<SpatialCorrelationResult> peaks =
+        findDistinctSpatialPeaks(C, 1 + kExtraTranslationPeaks, kPeakSeparation);
+    times[static_cast<std::size_t>(k)].translation_ms += msSince(begin);
+    for (std::size_t j = 1; j < peaks.size(); ++j) {
+      Pose pose;
+      pose.R = R;
+      pose.t = peaks[j].shift;
+      pose.v = verify(s, pose.R, pose.t, times[static_cast<std::size_t>(k)], 1);
+      extra[static_cast<std::size_t>(k)].push_back(
+          polish(s, pose, times[static_cast<std::size_t>(k)], 1));
+    }
+  });
+  for (std::size_t k = 0; k < n; ++k)
+    for (const Pose& pose : extra[k]) {
+      RotationHypothesis h = e.hypotheses[k];
+      h.rotation = pose.R;
+      h.translation = pose.t;
+      e.hypotheses.push_back(h);
+      v.push_back(pose.v);
+    }
+  splitWallTime(times, msSince(start), e);
 }
 
 } // namespace
@@ -231,8 +286,15 @@ Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_
                   PhaserEstimate& e)
 {
   e.hypotheses = rotationHypotheses(s, C, h_norm, e);
+  std::vector<Eigen::Matrix3d> rotations;
+  for (const RotationHypothesis& h : e.hypotheses)
+    rotations.push_back(h.rotation); // before the polish moves them
   std::vector<PoseVerification> v;
   translateHypotheses(s, e, v);
+  if (canVerify(s) && std::none_of(v.begin(), v.end(), [&](const PoseVerification& x) {
+        return meetsLimits(x, s.p);
+      }))
+    widenHypotheses(s, rotations, e, v);
   bool verifiable = false;
   double most_inliers = 0.0;
   for (std::size_t k = 0; k < e.hypotheses.size(); ++k) {

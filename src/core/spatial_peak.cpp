@@ -173,6 +173,61 @@ double peakScore(const SpatialVolume& c, const Eigen::Vector3i& peak, int thread
   return height / std::max(deviation, 1e-12 * height);
 }
 
+/** The peak at flat index \a flat, refined (no score). */
+SpatialCorrelationResult refinedPeak(const SpatialVolume& correlation, std::size_t flat,
+                                     SpatialPeakRefinement refinement)
+{
+  const SpatialGrid& grid = correlation.grid;
+  SpatialCorrelationResult result;
+  result.index = grid.voxelIndex(flat);
+  result.peak_value = correlation.values[flat];
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  switch (refinement) {
+  case SpatialPeakRefinement::kNone:
+    break;
+  case SpatialPeakRefinement::kParabolic:
+    offset = refineAxes(correlation, result.index, false);
+    break;
+  case SpatialPeakRefinement::kGaussian:
+    offset = refineAxes(correlation, result.index, true);
+    break;
+  }
+  for (int a = 0; a < 3; ++a)
+    result.lag[a] = wrapLag(result.index[a], grid.dims[a]) + offset[a];
+  result.shift = grid.origin + result.lag * grid.voxel_size;
+  return result;
+}
+
+/** Whether voxel \a i is farther than \a separation voxels, on some axis (wrapped),
+ *  from every peak in \a taken. */
+bool apartFrom(const SpatialGrid& grid, const Eigen::Vector3i& i,
+               const std::vector<SpatialCorrelationResult>& taken, int separation)
+{
+  for (const SpatialCorrelationResult& t : taken) {
+    bool near = true;
+    for (int a = 0; a < 3 && near; ++a)
+      near = std::abs(wrapLag(wrapIndex(i[a] - t.index[a], grid.dims[a]),
+                              grid.dims[a])) <= separation;
+    if (near)
+      return false;
+  }
+  return true;
+}
+
+/** Whether voxel \a i is at least as high as its six face neighbors (wrapped). */
+bool localMaximum(const SpatialVolume& c, const Eigen::Vector3i& i)
+{
+  const double v = sampleWrapped(c, i);
+  for (int a = 0; a < 3; ++a)
+    for (int d = -1; d <= 1; d += 2) {
+      Eigen::Vector3i j = i;
+      j[a] += d;
+      if (sampleWrapped(c, j) > v)
+        return false;
+    }
+  return true;
+}
+
 } // namespace
 
 SpatialCorrelationResult findSpatialPeak(const SpatialVolume& correlation,
@@ -203,28 +258,38 @@ SpatialCorrelationResult findSpatialPeak(const SpatialVolume& correlation,
     if (c[b] > c[best])
       best = b;
 
-  SpatialCorrelationResult result;
-  result.index = grid.voxelIndex(best);
-  result.peak_value = c[best];
-
-  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
-  switch (refinement) {
-  case SpatialPeakRefinement::kNone:
-    break;
-  case SpatialPeakRefinement::kParabolic:
-    offset = refineAxes(correlation, result.index, false);
-    break;
-  case SpatialPeakRefinement::kGaussian:
-    offset = refineAxes(correlation, result.index, true);
-    break;
-  }
-  for (int a = 0; a < 3; ++a)
-    result.lag[a] = wrapLag(result.index[a], grid.dims[a]) + offset[a];
-  result.shift = grid.origin + result.lag * grid.voxel_size;
-
+  SpatialCorrelationResult result = refinedPeak(correlation, best, refinement);
   if (with_score)
     result.score = peakScore(correlation, result.index, threads);
   return result;
+}
+
+std::vector<SpatialCorrelationResult>
+findDistinctSpatialPeaks(const SpatialVolume& correlation, int count, int separation,
+                         SpatialPeakRefinement refinement)
+{
+  checkVolume(correlation, "findDistinctSpatialPeaks");
+  if (count < 0 || separation < 0)
+    throw InvalidArgument("findDistinctSpatialPeaks: negative count or separation");
+  const SpatialGrid& grid = correlation.grid;
+  const double* c = correlation.values.data();
+  std::vector<SpatialCorrelationResult> peaks;
+  while (static_cast<int>(peaks.size()) < count) {
+    // The highest local maximum apart from the peaks taken; the tests run only on
+    // values above the best so far, so a pass costs little more than an argmax.
+    std::size_t best = grid.size();
+    for (std::size_t i = 0; i < grid.size(); ++i) {
+      if (best < grid.size() && !(c[i] > c[best]))
+        continue;
+      const Eigen::Vector3i index = grid.voxelIndex(i);
+      if (apartFrom(grid, index, peaks, separation) && localMaximum(correlation, index))
+        best = i;
+    }
+    if (best == grid.size())
+      break;
+    peaks.push_back(refinedPeak(correlation, best, refinement));
+  }
+  return peaks;
 }
 
 } // namespace pcl::phaser

@@ -300,3 +300,45 @@ TEST(SpatialCorrelation, ConcurrentCorrelationsMatchSerialOnes)
     EXPECT_EQ(concurrent[i].score, serial[i].score);
   }
 }
+
+// Four bumps on a 16^3 volume: A (height 3), B (2.5, two voxels from A), C (2), D (1).
+// The distinct peaks are taken highest first, skipping those within the separation of
+// one taken; each is refined on its own bump.
+TEST(SpatialCorrelation, DistinctPeaksHighestFirstAndApart)
+{
+  SpatialVolume v;
+  v.grid.dims = Eigen::Vector3i(16, 16, 16);
+  v.grid.voxel_size = 1.0;
+  v.values.assign(v.grid.size(), 0.0);
+  const std::vector<std::pair<Eigen::Vector3i, double>> bumps = {
+      {{4, 4, 4}, 3.0}, {{6, 4, 4}, 2.5}, {{12, 10, 3}, 2.0}, {{2, 13, 9}, 1.0}};
+  for (int x = 0; x < 16; ++x)
+    for (int y = 0; y < 16; ++y)
+      for (int z = 0; z < 16; ++z)
+        for (const auto& [c, h] : bumps) {
+          const double d2 = (Eigen::Vector3i(x, y, z) - c).squaredNorm();
+          v.values[v.grid.flatIndex(x, y, z)] += h * std::exp(-d2 / (2 * 0.5 * 0.5));
+        }
+  auto lags = [](const std::vector<SpatialCorrelationResult>& peaks) {
+    std::vector<Eigen::Vector3i> out;
+    for (const SpatialCorrelationResult& p : peaks) {
+      EXPECT_LT((p.lag - p.lag.array().round().matrix()).norm(), 0.25); // sub-voxel
+      out.push_back(p.index);
+    }
+    return out;
+  };
+  const std::vector<Eigen::Vector3i> apart = lags(findDistinctSpatialPeaks(v, 3, 3));
+  ASSERT_EQ(apart.size(), 3u);
+  EXPECT_EQ(apart[0], bumps[0].first);
+  EXPECT_EQ(apart[1], bumps[2].first); // B is within 3 voxels of A
+  EXPECT_EQ(apart[2], bumps[3].first);
+  const std::vector<Eigen::Vector3i> close = lags(findDistinctSpatialPeaks(v, 3, 1));
+  ASSERT_EQ(close.size(), 3u);
+  EXPECT_EQ(close[1], bumps[1].first);
+  EXPECT_EQ(close[2], bumps[2].first);
+  EXPECT_EQ(findDistinctSpatialPeaks(v, 1, 3)[0].index,
+            findSpatialPeak(v, SpatialPeakRefinement::kGaussian, 1, false).index);
+  EXPECT_TRUE(findDistinctSpatialPeaks(v, 0, 3).empty());
+  EXPECT_THROW(findDistinctSpatialPeaks(v, -1, 3), InvalidArgument);
+  EXPECT_THROW(findDistinctSpatialPeaks(v, 2, -1), InvalidArgument);
+}

@@ -342,17 +342,17 @@ TEST(RealScans, SecondRotationHypothesisRescuesAMirrorPeak)
       ASSERT_GE(r.chosen_hypothesis, 0);
       ASSERT_LT(r.chosen_hypothesis, static_cast<int>(r.hypotheses.size()));
       // Hypotheses are in the caller's frames: the estimate was refined from the
-      // chosen one, which is nearer to it than any other.
+      // chosen one, whose residual rotation the later passes search within 20 deg
+      // (kResidualTilt). (Another hypothesis may be nearer: when none meets the
+      // limits, each rotation also tries further translation peaks, which are
+      // polished on their own.)
       const Eigen::Matrix4d final_T = phaser.getFinalTransformation().cast<double>();
       const double chosen_angle =
           rreDeg(r.hypotheses[r.chosen_hypothesis].transformation, final_T);
-      for (std::size_t h = 0; h < r.hypotheses.size(); ++h) {
+      for (std::size_t h = 0; h < r.hypotheses.size(); ++h)
         std::printf("  hypothesis %zu: %.2f deg from the estimate\n", h,
                     rreDeg(r.hypotheses[h].transformation, final_T));
-        if (static_cast<int>(h) != r.chosen_hypothesis) {
-          EXPECT_GT(rreDeg(r.hypotheses[h].transformation, final_T), chosen_angle);
-        }
-      }
+      EXPECT_LT(chosen_angle, 20.0);
     }
   }
   std::printf("  one hypothesis: RRE %.2f deg; three: RRE %.3f deg\n", error[0],

@@ -340,6 +340,16 @@ findSpatialPeak(const SpatialVolume& correlation,
                 SpatialPeakRefinement refinement = SpatialPeakRefinement::kGaussian,
                 int num_threads = 1, bool with_score = true);
 
+/** \brief The \a count (>= 0) highest distinct peaks of a correlation volume, highest
+ *  first: local maxima (at least as high as their six face neighbors, wrapped), each
+ *  more than \a separation (>= 0) voxels away on some axis from every higher one taken;
+ *  fewer when the volume has fewer. Refined as findSpatialPeak, without a score; single
+ *  threaded. \throws InvalidArgument if the volume is invalid or an argument negative.
+ */
+std::vector<SpatialCorrelationResult> findDistinctSpatialPeaks(
+    const SpatialVolume& correlation, int count, int separation,
+    SpatialPeakRefinement refinement = SpatialPeakRefinement::kGaussian);
+
 /** \brief correlateSpectra followed by findSpatialPeak. */
 SpatialCorrelationResult
 correlateSpatial(const SpatialSpectrum& target, const SpatialSpectrum& source,
