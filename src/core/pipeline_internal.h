@@ -124,8 +124,9 @@ constexpr double kOccupancySaturation = 0.05;
 /** Patches of the orientation histogram, in coarse voxels. */
 constexpr double kPatchVoxels = 1.0;
 
-/** Translation peaks beyond the highest that each pass-1 rotation contributes when no
- *  pose meets the verification limits, and their least separation in coarse voxels. */
+/** Translation peaks beyond the highest that each pass-1 rotation contributes when the
+ *  pass-1 choice misses the verification limits or does not stand out (standsOut), and
+ *  their least separation in coarse voxels. */
 constexpr int kExtraTranslationPeaks = 2;
 constexpr int kPeakSeparation = 3;
 
@@ -216,6 +217,15 @@ double rank(const PoseVerification& v);
 
 /** Whether \a v meets the verification limits of \a p (pipeline_verdict.cpp). */
 bool meetsLimits(const PoseVerification& v, const PhaserParameters& p);
+
+/** Whether \a pose (its verification set) outranks the best hypothesis distinct from it
+ *  by more than kDistinctErrors standard errors of the difference (true when none is
+ *  distinct; about centroids, the difference alone); that hypothesis's rank and the
+ *  error go to \a runner_up_rank (-infinity without one) and \a error
+ * (pipeline_verdict.cpp). */
+bool standsOut(const SourceContext& s, const Pose& pose,
+               const std::vector<RotationHypothesis>& hypotheses,
+               double& runner_up_rank, double& error);
 
 /** The final \a pose and its verification figures into \a e, and whether it is
  *  verified (pipeline_verdict.cpp). */

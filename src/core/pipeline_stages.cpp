@@ -228,12 +228,12 @@ void translateHypotheses(const SourceContext& s, PhaserEstimate& e,
   splitWallTime(times, msSince(start), e);
 }
 
-/** When no pass-1 pose meets the verification limits: the next kExtraTranslationPeaks
- *  distinct peaks (kPeakSeparation coarse voxels apart) of every hypothesis's coarse
- *  translation correlation, at its grid rotation in \a rotations, each a hypothesis of
- *  its own, verified and polished as in pass 1 and appended to e.hypotheses and \a v.
- *  On partial views a rotation near the truth can have its highest translation peak
- *  meters off (benchmarks.md 9.10). */
+/** When the pass-1 choice would not be claimed (globalSearch): the next
+ * kExtraTranslationPeaks distinct peaks (kPeakSeparation coarse voxels apart) of every
+ * hypothesis's coarse translation correlation, at its grid rotation in \a rotations,
+ * each a hypothesis of its own, verified and polished as in pass 1 and appended to
+ * e.hypotheses and \a v. On partial views a rotation near the truth can have its
+ * highest translation peak meters off (benchmarks.md 9.10). */
 void widenHypotheses(const SourceContext& s,
                      const std::vector<Eigen::Matrix3d>& rotations, PhaserEstimate& e,
                      std::vector<PoseVerification>& v)
@@ -274,27 +274,13 @@ void widenHypotheses(const SourceContext& s,
   splitWallTime(times, msSince(start), e);
 }
 
-} // namespace
-
-/** Pass 1: every hypothesis through the coarse translation search and verification.
- *  About sensor origins, when at least one hypothesis puts kMinRankingInliers of the
- *  samples on the target, the best verified one wins. Otherwise (object scans, or
- *  clouds so noisy or sparse that no pose verifies, e.g. 1 m of noise at 40 dB PSNR)
- *  verification cannot rank them: the range peak whose rotated source overlaps the
- *  target most wins, as the orientation histograms are as unreliable as the normals. */
-Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_norm,
-                  PhaserEstimate& e)
+/** The hypotheses' verification figures from \a v, and the pass-1 pose: about sensor
+ *  origins, when at least one hypothesis puts kMinRankingInliers of the samples on the
+ *  target, the best verified one; otherwise the range peak whose rotated source
+ *  overlaps the target most. */
+Pose choose(const SourceContext& s, const std::vector<PoseVerification>& v,
+            PhaserEstimate& e)
 {
-  e.hypotheses = rotationHypotheses(s, C, h_norm, e);
-  std::vector<Eigen::Matrix3d> rotations;
-  for (const RotationHypothesis& h : e.hypotheses)
-    rotations.push_back(h.rotation); // before the polish moves them
-  std::vector<PoseVerification> v;
-  translateHypotheses(s, e, v);
-  if (canVerify(s) && std::none_of(v.begin(), v.end(), [&](const PoseVerification& x) {
-        return meetsLimits(x, s.p);
-      }))
-    widenHypotheses(s, rotations, e, v);
   bool verifiable = false;
   double most_inliers = 0.0;
   for (std::size_t k = 0; k < e.hypotheses.size(); ++k) {
@@ -318,12 +304,40 @@ Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_
       best = k;
   }
   e.chosen_hypothesis = static_cast<int>(best);
-  e.passes = 1;
   Pose pose;
   pose.R = e.hypotheses[best].rotation;
   pose.t = e.hypotheses[best].translation;
   pose.v = v[best];
   pose.verifiable = verifiable;
+  return pose;
+}
+
+} // namespace
+
+/** Pass 1: every hypothesis through the coarse translation search and verification,
+ *  then choose(). Where poses can be verified and the chosen one would not be claimed
+ *  (it misses the limits, or a distinct hypothesis ranks about as high: standsOut),
+ *  widenHypotheses and choose again. Otherwise (object scans, or clouds so noisy or
+ *  sparse that no pose verifies, e.g. 1 m of noise at 40 dB PSNR) verification cannot
+ *  rank them and the range peak that overlaps most wins, as the orientation histograms
+ *  are as unreliable as the normals. */
+Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_norm,
+                  PhaserEstimate& e)
+{
+  e.hypotheses = rotationHypotheses(s, C, h_norm, e);
+  std::vector<Eigen::Matrix3d> rotations;
+  for (const RotationHypothesis& h : e.hypotheses)
+    rotations.push_back(h.rotation); // before the polish moves them
+  std::vector<PoseVerification> v;
+  translateHypotheses(s, e, v);
+  Pose pose = choose(s, v, e);
+  double runner_up = 0.0, error = 0.0;
+  if (canVerify(s) && (!meetsLimits(pose.v, s.p) ||
+                       !standsOut(s, pose, e.hypotheses, runner_up, error))) {
+    widenHypotheses(s, rotations, e, v);
+    pose = choose(s, v, e);
+  }
+  e.passes = 1;
   return pose;
 }
 

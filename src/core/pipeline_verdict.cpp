@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace pcl::phaser {
@@ -117,6 +118,27 @@ double rankDifferenceError(const SourceContext& s, const Pose& a, const Pose& b)
 
 } // namespace
 
+bool standsOut(const SourceContext& s, const Pose& pose,
+               const std::vector<RotationHypothesis>& hypotheses,
+               double& runner_up_rank, double& error)
+{
+  runner_up_rank = -std::numeric_limits<double>::infinity();
+  error = 0.0;
+  // Distinct poses are those a polish (two coarse voxels) cannot join.
+  const int k = runnerUp(hypotheses, pose, 2.0 * s.target.coarse.grid.voxel_size);
+  if (k < 0)
+    return true;
+  const RotationHypothesis& h = hypotheses[static_cast<std::size_t>(k)];
+  runner_up_rank = h.verification_rank;
+  if (!s.p.sensor_centered)
+    return rank(pose.v) > runner_up_rank;
+  Pose other;
+  other.R = h.rotation;
+  other.t = h.translation;
+  error = rankDifferenceError(s, pose, other);
+  return rank(pose.v) - runner_up_rank > kDistinctErrors * error;
+}
+
 /** The final \a pose and its verification figures into \a e, and the verdict. */
 void verdict(const SourceContext& s, const Pose& pose, PhaserEstimate& e)
 {
@@ -129,25 +151,13 @@ void verdict(const SourceContext& s, const Pose& pose, PhaserEstimate& e)
   e.verification_samples = static_cast<int>(s.samples.points.cols());
   e.verification_score = pose.v.score;
   e.verification_rank = rank(pose.v);
-  // Distinct poses are those a polish (two coarse voxels) cannot join.
-  const int runner_up =
-      runnerUp(e.hypotheses, pose, 2.0 * s.target.coarse.grid.voxel_size);
-  if (runner_up >= 0) {
-    const RotationHypothesis& h = e.hypotheses[static_cast<std::size_t>(runner_up)];
-    Pose other;
-    other.R = h.rotation;
-    other.t = h.translation;
-    e.runner_up_rank = h.verification_rank;
-    if (s.p.sensor_centered) {
-      const auto start = Clock::now();
-      e.runner_up_error = rankDifferenceError(s, pose, other);
-      e.verification_ms += msSince(start);
-    }
-  }
+  const auto start = Clock::now();
+  const bool distinct =
+      standsOut(s, pose, e.hypotheses, e.runner_up_rank, e.runner_up_error);
+  e.verification_ms += msSince(start);
   e.verified = e.verification_samples >= kMinVerificationSamples &&
-               (!s.p.sensor_centered || (pose.verifiable && meetsLimits(pose.v, s.p) &&
-                                         e.verification_rank - e.runner_up_rank >
-                                             kDistinctErrors * e.runner_up_error));
+               (!s.p.sensor_centered ||
+                (pose.verifiable && meetsLimits(pose.v, s.p) && distinct));
 }
 
 } // namespace detail
