@@ -175,7 +175,8 @@ struct PhaserResult {
   /** \brief The highest verification_rank among the pass-1 hypotheses distinct from the
    *  final pose (turned from it by more than 10 deg, or moved by more than two coarse
    *  voxels: farther than a polish climbs), or -infinity when there is none. About
-   *  sensor origins, verified needs verification_rank above it: when a distinct pose
+   *  sensor origins, verified needs verification_rank above it by more than 2.33
+   *  runner_up_error: when a distinct pose
    *  has as much evidence (a symmetric yard, a repeated facade, a narrow view), the
    *  scene admits both and only the limits chose between them. */
   double runner_up_rank = -std::numeric_limits<double>::infinity();
