@@ -137,6 +137,14 @@ void keepIf(Cloud& cloud, Keep keep)
 
 } // namespace
 
+void keepSector(Cloud& cloud, double center, double half_width)
+{
+  keepIf(cloud, [&](const PointT& p) {
+    const double d = std::remainder(std::atan2(p.y, p.x) - center, 2.0 * M_PI);
+    return std::abs(d) <= half_width;
+  });
+}
+
 void applyCondition(const Condition& condition, Cloud& cloud, std::mt19937& rng)
 {
   std::uniform_real_distribution<double> u01(0.0, 1.0);
@@ -149,11 +157,7 @@ void applyCondition(const Condition& condition, Cloud& cloud, std::mt19937& rng)
     break;
   case Condition::Kind::Overlap: {
     const double center = (2.0 * u01(rng) - 1.0) * M_PI;
-    const double half_width = condition.value * M_PI;
-    keepIf(cloud, [&](const PointT& p) {
-      const double d = std::remainder(std::atan2(p.y, p.x) - center, 2.0 * M_PI);
-      return std::abs(d) <= half_width;
-    });
+    keepSector(cloud, center, condition.value * M_PI);
     break;
   }
   default:

@@ -61,6 +61,11 @@ bool parseCondition(const std::string& text, Condition& condition);
  * The cloud stays dense (non-finite points are expected to have been removed). */
 void applyCondition(const Condition& condition, Cloud& cloud, std::mt19937& rng);
 
+/** \brief Keeps the points of \a cloud whose azimuth about the origin lies within
+ *  \a half_width of \a center (radians): the Overlap condition about a given direction.
+ */
+void keepSector(Cloud& cloud, double center, double half_width);
+
 /** \brief Median of \a values (NaN when empty); \a values is reordered. */
 double median(std::vector<double> values);
 

@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 namespace pcl::phaser {
@@ -218,14 +219,18 @@ double rank(const PoseVerification& v);
 /** Whether \a v meets the verification limits of \a p (pipeline_verdict.cpp). */
 bool meetsLimits(const PoseVerification& v, const PhaserParameters& p);
 
+/** How the pose compared with the best hypothesis distinct from it (standsOut). */
+struct Distinctness {
+  bool stands_out = true; ///< true when no hypothesis is distinct
+  double runner_up_rank = -std::numeric_limits<double>::infinity(); ///< its rank
+  double error = 0.0; ///< standard error of the rank difference (sensor origins)
+};
+
 /** Whether \a pose (its verification set) outranks the best hypothesis distinct from it
- *  by more than kDistinctErrors standard errors of the difference (true when none is
- *  distinct; about centroids, the difference alone); that hypothesis's rank and the
- *  error go to \a runner_up_rank (-infinity without one) and \a error
- * (pipeline_verdict.cpp). */
-bool standsOut(const SourceContext& s, const Pose& pose,
-               const std::vector<RotationHypothesis>& hypotheses,
-               double& runner_up_rank, double& error);
+ *  by more than kDistinctErrors standard errors of the difference (about centroids, the
+ *  difference alone; pipeline_verdict.cpp). */
+Distinctness standsOut(const SourceContext& s, const Pose& pose,
+                       const std::vector<RotationHypothesis>& hypotheses);
 
 /** The final \a pose and its verification figures into \a e, and whether it is
  *  verified (pipeline_verdict.cpp). */

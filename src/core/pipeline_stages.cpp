@@ -331,9 +331,8 @@ Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_
   std::vector<PoseVerification> v;
   translateHypotheses(s, e, v);
   Pose pose = choose(s, v, e);
-  double runner_up = 0.0, error = 0.0;
-  if (canVerify(s) && (!meetsLimits(pose.v, s.p) ||
-                       !standsOut(s, pose, e.hypotheses, runner_up, error))) {
+  if (canVerify(s) &&
+      (!meetsLimits(pose.v, s.p) || !standsOut(s, pose, e.hypotheses).stands_out)) {
     widenHypotheses(s, rotations, e, v);
     pose = choose(s, v, e);
   }

@@ -118,25 +118,24 @@ double rankDifferenceError(const SourceContext& s, const Pose& a, const Pose& b)
 
 } // namespace
 
-bool standsOut(const SourceContext& s, const Pose& pose,
-               const std::vector<RotationHypothesis>& hypotheses,
-               double& runner_up_rank, double& error)
+Distinctness standsOut(const SourceContext& s, const Pose& pose,
+                       const std::vector<RotationHypothesis>& hypotheses)
 {
-  runner_up_rank = -std::numeric_limits<double>::infinity();
-  error = 0.0;
+  Distinctness d;
   // Distinct poses are those a polish (two coarse voxels) cannot join.
   const int k = runnerUp(hypotheses, pose, 2.0 * s.target.coarse.grid.voxel_size);
   if (k < 0)
-    return true;
+    return d;
   const RotationHypothesis& h = hypotheses[static_cast<std::size_t>(k)];
-  runner_up_rank = h.verification_rank;
-  if (!s.p.sensor_centered)
-    return rank(pose.v) > runner_up_rank;
-  Pose other;
-  other.R = h.rotation;
-  other.t = h.translation;
-  error = rankDifferenceError(s, pose, other);
-  return rank(pose.v) - runner_up_rank > kDistinctErrors * error;
+  d.runner_up_rank = h.verification_rank;
+  if (s.p.sensor_centered) {
+    Pose other;
+    other.R = h.rotation;
+    other.t = h.translation;
+    d.error = rankDifferenceError(s, pose, other);
+  }
+  d.stands_out = rank(pose.v) - d.runner_up_rank > kDistinctErrors * d.error;
+  return d;
 }
 
 /** The final \a pose and its verification figures into \a e, and the verdict. */
@@ -152,12 +151,13 @@ void verdict(const SourceContext& s, const Pose& pose, PhaserEstimate& e)
   e.verification_score = pose.v.score;
   e.verification_rank = rank(pose.v);
   const auto start = Clock::now();
-  const bool distinct =
-      standsOut(s, pose, e.hypotheses, e.runner_up_rank, e.runner_up_error);
+  const Distinctness d = standsOut(s, pose, e.hypotheses);
+  e.runner_up_rank = d.runner_up_rank;
+  e.runner_up_error = d.error;
   e.verification_ms += msSince(start);
   e.verified = e.verification_samples >= kMinVerificationSamples &&
                (!s.p.sensor_centered ||
-                (pose.verifiable && meetsLimits(pose.v, s.p) && distinct));
+                (pose.verifiable && meetsLimits(pose.v, s.p) && d.stands_out));
 }
 
 } // namespace detail

@@ -77,12 +77,8 @@ TEST(PartialViews, TenthWedgeWhosePassOneWinnerDoesNotStandOutIsRescued)
   const std::string file = "lidar/kitti_raw_hdl64/0000000000.bin";
   PCL_PHASER_REQUIRE_DATA(file);
   const auto scan = pcl::phaser::test::loadFiniteCloud<PointT>(file);
-  auto source = pcl::make_shared<Cloud>();
-  const double center = 40.671649 * M_PI / 180.0;
-  for (const PointT& p : *scan)
-    if (std::abs(std::remainder(std::atan2(p.y, p.x) - center, 2.0 * M_PI)) <=
-        0.1 * M_PI)
-      source->push_back(p);
+  auto source = pcl::make_shared<Cloud>(*scan);
+  pcl::phaser::bench::keepSector(*source, 40.671649 * M_PI / 180.0, 0.1 * M_PI);
   Eigen::Matrix4d T = Eigen::Matrix4d::Identity(); // target -> source
   T.topLeftCorner<3, 3>() =
       Eigen::Quaterniond(0.237153389, 0.639019600, -0.473565166, 0.557806646)

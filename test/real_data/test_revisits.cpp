@@ -6,6 +6,7 @@
  * default parameters about the sensor origin. The reference poses are LiDAR-inertial
  * odometry, good to centimeters: success is judged at 5 deg / 0.6 m.
  */
+#include "protocol.h"
 #include "real_data_support.h"
 
 #include <pcl_phaser/phaser_registration.h>
@@ -67,12 +68,8 @@ Cloud::Ptr scan(const std::string& name)
  *  field of view would see it. */
 Cloud::Ptr quarterSector(const Cloud& full, double center_deg)
 {
-  auto sector = pcl::make_shared<Cloud>();
-  const double center = center_deg * M_PI / 180.0;
-  for (const auto& p : full)
-    if (std::abs(std::remainder(std::atan2(p.y, p.x) - center, 2.0 * M_PI)) <=
-        0.25 * M_PI)
-      sector->push_back(p);
+  auto sector = pcl::make_shared<Cloud>(full);
+  pcl::phaser::bench::keepSector(*sector, center_deg * M_PI / 180.0, 0.25 * M_PI);
   return sector;
 }
 
