@@ -275,8 +275,11 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
     model->orientation =
         orientationSpectrum(patches, params.orientation_bandwidth, params.num_threads);
   model->thickness = patches.thickness;
-  model->index = PointIndex(points, kVerificationVoxels * coarse.voxel_size,
-                            patchNormalsAt(patches, points));
+  // One point (the centroid) per kIndexThinning-th of the radius: distances move by a
+  // few centimeters, while a cell near the sensor held thousands of points.
+  const double radius = kVerificationVoxels * coarse.voxel_size;
+  const Eigen::Matrix3Xd thinned = voxelCentroids(points, radius / kIndexThinning);
+  model->index = PointIndex(thinned, radius, patchNormalsAt(patches, thinned));
   if (params.sensor_centered) {
     model->samples = voxelCentroids(points, model->index.radius());
     model->sample_weights = orientationWeights(patches, model->samples);
@@ -309,7 +312,9 @@ SourceContext sourceContext(const TargetModel& target, const Eigen::Matrix3Xd& p
                             PhaserResult& e)
 {
   const auto t = Clock::now();
-  SourceContext s{target, points, channels, p, {}, {}, {}};
+  SourceContext s{target, points, channels, p, {}, {}, {}, {}};
+  s.coarse_points =
+      voxelCentroids(points, target.coarse.grid.voxel_size / kIndexThinning);
   s.samples.points = voxelCentroids(points, e.verification_radius);
   s.patches = surfacePatches(points, kPatchVoxels * target.coarse.grid.voxel_size,
                              Eigen::Vector3d::Zero());

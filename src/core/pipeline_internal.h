@@ -94,6 +94,10 @@ constexpr double kResidualTilt = 20.0 * M_PI / 180.0;
 /** Verification radius, in coarse voxels. */
 constexpr double kVerificationVoxels = 0.5;
 
+/** The verification index keeps one point per cube of its radius / kIndexThinning;
+ *  the pass-1 occupancy one per cube of a coarse voxel / kIndexThinning. */
+constexpr double kIndexThinning = 8.0;
+
 /** Direction cells of the free-space test (about 1.4 deg) and its margin in coarse
  *  voxels. */
 constexpr int kFreeSpaceBandwidth = 128;
@@ -154,6 +158,10 @@ struct SourceContext {
   VerificationSamples samples; ///< evenly spaced source points for verifyPose
   SurfacePatches patches;      ///< planar patches of the source (coarse voxels)
   FreeSpace free_space;        ///< what the source's sensor saw through
+  /** The points thinned to one (the centroid) per kIndexThinning-th of a coarse voxel:
+   *  the pass-1 occupancy grids are binary, so they barely change, at a fraction of
+   *  the cost of rotating and voxelizing every point per hypothesis. */
+  Eigen::Matrix3Xd coarse_points;
 };
 
 double msSince(Clock::time_point start);

@@ -78,19 +78,17 @@ std::vector<RotationHypothesis> rotationHypotheses(const SourceContext& s,
   return out;
 }
 
-/** Whether verification \a a ranks above \a b: a pose within the limits above one
- *  outside them, then one with at least \a support of inliers above one without (a
- *  pose that matches far less than another has little support, however little it
- *  violates: noise puts the right pose's samples in space the target saw through, and
- *  a pose whose samples land where the target saw nothing violates least), then by
- *  rank() (a wrong pose can match more samples than the right one, e.g. a 180 deg flip
- *  of a symmetric yard, and still see through the target's surfaces). */
-bool ranksAbove(const PoseVerification& a, const PoseVerification& b,
-                const PhaserParameters& p, double support)
+/** Whether verification \a a ranks above \a b: one with at least \a support of
+ *  inliers above one without (a pose that matches far less than another has little
+ *  support, however little it violates: noise puts the right pose's samples in space
+ * the target saw through, and a pose whose samples land where the target saw nothing
+ *  violates least), then by rank() (a wrong pose can match more samples than the right
+ *  one, e.g. a 180 deg flip of a symmetric yard, and still see through the target's
+ *  surfaces). The verification limits take no part: they judge the final pose, while a
+ *  pass-1 pose is a voxel and a grid cell off, its constraint and free-space shares not
+ *  yet those of the refined pose (benchmarks.md 9.18). */
+bool ranksAbove(const PoseVerification& a, const PoseVerification& b, double support)
 {
-  const bool a_meets = meetsLimits(a, p), b_meets = meetsLimits(b, p);
-  if (a_meets != b_meets)
-    return a_meets;
   const bool a_supported = a.inlier_fraction >= support;
   const bool b_supported = b.inlier_fraction >= support;
   if (a_supported != b_supported)
@@ -208,7 +206,7 @@ void translateHypotheses(const SourceContext& s, PhaserEstimate& e,
     const RotationHypothesis& h = e.hypotheses[static_cast<std::size_t>(k)];
     Pose& pose = poses[static_cast<std::size_t>(k)];
     const SpatialCorrelationResult shift = shiftOf(
-        s.target.coarse, h.rotation * s.points, s.p.whitening, single, times[k]);
+        s.target.coarse, h.rotation * s.coarse_points, s.p.whitening, single, times[k]);
     e.hypotheses[static_cast<std::size_t>(k)].overlap = shift.peak_value;
     pose.R = h.rotation;
     pose.t = shift.shift;
@@ -249,8 +247,9 @@ void widenHypotheses(const SourceContext& s,
     const auto begin = Clock::now();
     const Eigen::Matrix3d& R = rotations[static_cast<std::size_t>(k)];
     const SpatialVolume C = correlateSpectraWhitened(
-        s.target.coarse, occupancySpectrum(s.target.coarse.grid, R * s.points, 1),
-        s.p.whitening, 1);
+        s.target.coarse,
+        occupancySpectrum(s.target.coarse.grid, R * s.coarse_points, 1), s.p.whitening,
+        1);
     std::vector<SpatialCorrelationResult> peaks =
         findDistinctSpatialPeaks(C, 1 + kExtraTranslationPeaks, kPeakSeparation);
     times[static_cast<std::size_t>(k)].translation_ms += msSince(begin);
@@ -298,7 +297,7 @@ Pose choose(const SourceContext& s, const std::vector<PoseVerification>& v,
   for (std::size_t k = 1; k < e.hypotheses.size(); ++k) {
     const RotationHypothesis& h = e.hypotheses[k];
     const bool better =
-        verifiable ? ranksAbove(v[k], v[best], s.p, kMinSupport * most_inliers)
+        verifiable ? ranksAbove(v[k], v[best], kMinSupport * most_inliers)
                    : !h.from_orientation && h.overlap > e.hypotheses[best].overlap;
     if (better)
       best = k;

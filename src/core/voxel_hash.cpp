@@ -98,10 +98,11 @@ PointIndex::PointIndex(const Eigen::Matrix3Xd& points, double radius,
     if (normals.cols() != 0)
       normals_.col(static_cast<Eigen::Index>(k)) = normals.col(groups.order[k]);
   }
-  // Open addressing with linear probing, at most half full: a look-up reads one slot
-  // or a few neighbors in memory (std::unordered_map chased a list node per look-up).
+  // Open addressing with linear probing, at most a quarter full: a look-up reads one
+  // slot or a few neighbors in memory (std::unordered_map chased a list node per
+  // look-up).
   int bits = 4;
-  while ((std::size_t(1) << bits) < 2 * groups.size())
+  while ((std::size_t(1) << bits) < 4 * groups.size())
     ++bits;
   const std::size_t capacity = std::size_t(1) << bits;
   slot_shift_ = 64 - bits;

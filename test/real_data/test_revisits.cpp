@@ -8,6 +8,7 @@
  */
 #include "protocol.h"
 #include "real_data_support.h"
+#include "revisits.h"
 
 #include <pcl_phaser/phaser_registration.h>
 
@@ -44,6 +45,26 @@ Eigen::Matrix4d referencePose(const std::string& source, const std::string& targ
   }
   ADD_FAILURE() << "pair " << source << " " << target << " not in pairs.txt";
   return Eigen::Matrix4d::Identity();
+}
+
+/** T_target_source of scans fullS.pcd and fullT.pcd from their odometry poses (the
+ *  derived pairs of the revisit study). */
+Eigen::Matrix4d odometryPose(int source, int target)
+{
+  std::vector<pcl::phaser::bench::ScanPose> poses;
+  std::string error;
+  if (!pcl::phaser::bench::readScanPoses(
+          pcl::phaser::test::dataPath(kDir + "poses_T_world_lidar.txt"), poses, error))
+    ADD_FAILURE() << error;
+  Eigen::Matrix4d world_source = Eigen::Matrix4d::Identity(),
+                  world_target = world_source;
+  for (const auto& pose : poses) {
+    if (pose.index == source)
+      world_source = pose.world_lidar;
+    if (pose.index == target)
+      world_target = pose.world_lidar;
+  }
+  return world_target.inverse() * world_source;
 }
 
 struct Errors {
@@ -95,6 +116,20 @@ Eigen::Matrix4d align(const Cloud::ConstPtr& source, const Cloud::ConstPtr& targ
   return phaser.getFinalTransformation().cast<double>();
 }
 
+/** \a source against \a target with defaults: within 5 deg / 0.6 m of \a truth, and
+ *  converged. */
+void expectRegistered(const std::string& source, const std::string& target,
+                      const Eigen::Matrix4d& truth)
+{
+  bool converged = false;
+  std::string why;
+  const Errors e = errors(align(scan(source), scan(target), converged, &why), truth);
+  why = source + " -> " + target + ": " + why;
+  EXPECT_LT(e.rotation_deg, 5.0) << why;
+  EXPECT_LT(e.translation_m, 0.6) << why;
+  EXPECT_TRUE(converged) << why;
+}
+
 /** The 90 deg sector of \a source about \a center_deg against \a target: when it
  *  converges, the pose is right (5 deg / 2 m). */
 void expectRightIfConverged(const std::string& source, double center_deg,
@@ -123,15 +158,8 @@ TEST(Revisits, PairsMetersApartRegisterAndConverge)
       {"full90.pcd", "full108.pcd"},  // 8.3 m, 156 deg
       {"full84.pcd", "full162.pcd"},  // 12.4 m, 83 deg
       {"full54.pcd", "full156.pcd"}}; // 20.8 m, 92 deg
-  for (const auto& [s, t] : pairs) {
-    const auto source = scan(s);
-    const auto target = scan(t);
-    bool converged = false;
-    const Errors e = errors(align(source, target, converged), referencePose(s, t));
-    EXPECT_LT(e.rotation_deg, 5.0) << s << " -> " << t;
-    EXPECT_LT(e.translation_m, 0.6) << s << " -> " << t;
-    EXPECT_TRUE(converged) << s << " -> " << t;
-  }
+  for (const auto& [s, t] : pairs)
+    expectRegistered(s, t, referencePose(s, t));
 }
 
 TEST(Revisits, SwappedInputsGiveTheInverse)
@@ -212,4 +240,16 @@ TEST(Revisits, NarrowViewFlipThatBarelyOutranksTheRunnerUpDoesNotConverge)
 {
   PCL_PHASER_REQUIRE_DATA(kDir + "full6.pcd");
   expectRightIfConverged("full6.pcd", 175.8091, "full78.pcd");
+}
+
+// A derived pair 3.8 m apart (full102 -> full84). In pass 1 the right rotation's pose
+// is 1.75 m off, before the final refinement: it has the most inliers (0.43) and the
+// highest rank (0.29), but its constraint (0.025) is below the limit, while a 90 deg
+// pose with half as many inliers (rank 0.01) lies just inside every limit. Ranked by
+// the limits first, that pose won pass 1 and the pair failed (benchmarks.md 9.18);
+// ranked by the evidence, the right pose wins and is refined to centimeters.
+TEST(Revisits, PassOneRanksAnUnrefinedRightPoseByItsEvidenceNotByTheLimits)
+{
+  PCL_PHASER_REQUIRE_DATA(kDir + "poses_T_world_lidar.txt");
+  expectRegistered("full102.pcd", "full84.pcd", odometryPose(102, 84));
 }

@@ -87,7 +87,7 @@ private:
     std::int64_t key = kEmptyKey;
     Eigen::Index first = 0, last = 0;
   };
-  std::vector<Cell> slots_; ///< a power of two of them, at most half used
+  std::vector<Cell> slots_; ///< a power of two of them, at most a quarter used
   int slot_shift_ = 60;     ///< 64 - log2(slots_.size())
 };
 
