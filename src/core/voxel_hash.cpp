@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 namespace pcl::phaser {
 
@@ -36,6 +38,41 @@ std::int64_t offsetKey(std::int64_t key, int dx, int dy, int dz)
   return key + dx * kX + dy * kY + dz;
 }
 
+/** Bit of the neighbor (dx, dy, dz) in PointIndex::Cell::occupied. */
+std::uint32_t neighborBit(int dx, int dy, int dz)
+{
+  return std::uint32_t(1) << ((dx + 1) * 9 + (dy + 1) * 3 + (dz + 1));
+}
+
+/** \a keyed, whose indices increase, in increasing order of key and then index, as
+ *  std::sort of the pairs would give: a least-significant-digit radix sort of the keys
+ *  (stable, so equal keys keep their index order), about a fifth of std::sort's time
+ *  on a LiDAR scan. Digits shared by every key are skipped. */
+void sortByKey(std::vector<std::pair<std::int64_t, Eigen::Index>>& keyed)
+{
+  constexpr int kDigitBits = 11;
+  constexpr std::uint64_t kDigitMask = (std::uint64_t(1) << kDigitBits) - 1;
+  std::vector<std::pair<std::int64_t, Eigen::Index>> buffer(keyed.size());
+  std::vector<std::size_t> start(std::size_t(1) << kDigitBits);
+  for (int shift = 0; shift < 63; shift += kDigitBits) {
+    const auto digit = [&](std::int64_t key) {
+      return static_cast<std::size_t>((static_cast<std::uint64_t>(key) >> shift) &
+                                      kDigitMask);
+    };
+    std::fill(start.begin(), start.end(), 0);
+    for (const auto& k : keyed)
+      ++start[digit(k.first)];
+    if (std::find(start.begin(), start.end(), keyed.size()) != start.end())
+      continue; // one digit value for all: the order stays
+    std::size_t sum = 0;
+    for (std::size_t& s : start)
+      sum += std::exchange(s, sum);
+    for (const auto& k : keyed)
+      buffer[start[digit(k.first)]++] = k;
+    keyed.swap(buffer);
+  }
+}
+
 } // namespace
 
 VoxelGroups groupByVoxel(const Eigen::Matrix3Xd& points, double voxel_size)
@@ -49,7 +86,7 @@ VoxelGroups groupByVoxel(const Eigen::Matrix3Xd& points, double voxel_size)
     if (voxelKey(points.col(i), voxel_size, key))
       keyed.emplace_back(key, i);
   }
-  std::sort(keyed.begin(), keyed.end());
+  sortByKey(keyed);
   VoxelGroups groups;
   groups.voxel_size = voxel_size;
   groups.order.reserve(keyed.size());
@@ -100,19 +137,58 @@ PointIndex::PointIndex(const Eigen::Matrix3Xd& points, double radius,
   }
   // Open addressing with linear probing, at most a quarter full: a look-up reads one
   // slot or a few neighbors in memory (std::unordered_map chased a list node per
-  // look-up).
-  int bits = 4;
-  while ((std::size_t(1) << bits) < 4 * groups.size())
-    ++bits;
-  const std::size_t capacity = std::size_t(1) << bits;
-  slot_shift_ = 64 - bits;
-  slots_.assign(capacity, Cell{});
+  // look-up). Each cell with points marks itself in the 27 cells around it, so a query
+  // probes only the cells that hold points, and none when its own cell is absent.
+  slots_.assign(16, Cell{});
+  slot_shift_ = 60;
   for (std::size_t g = 0; g < groups.size(); ++g) {
-    std::size_t i = slotOf(groups.keys[g]);
-    while (slots_[i].key != kEmptyKey)
-      i = (i + 1) & (capacity - 1);
-    slots_[i] = {groups.keys[g], groups.offsets[g], groups.offsets[g + 1]};
+    const std::size_t i = insert(groups.keys[g]);
+    slots_[i].first = groups.offsets[g];
+    slots_[i].last = groups.offsets[g + 1];
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz)
+          slots_[insert(offsetKey(groups.keys[g], dx, dy, dz))].occupied |=
+              neighborBit(-dx, -dy, -dz);
   }
+}
+
+std::size_t PointIndex::insert(std::int64_t key)
+{
+  if (4 * (used_ + 1) > slots_.size()) {
+    std::vector<Cell> old(2 * slots_.size());
+    old.swap(slots_);
+    --slot_shift_;
+    for (const Cell& cell : old) {
+      if (cell.key == kEmptyKey)
+        continue;
+      std::size_t i = slotOf(cell.key);
+      while (slots_[i].key != kEmptyKey)
+        i = (i + 1) & (slots_.size() - 1);
+      slots_[i] = cell;
+    }
+  }
+  std::size_t i = slotOf(key);
+  while (slots_[i].key != key) {
+    if (slots_[i].key == kEmptyKey) {
+      slots_[i].key = key;
+      ++used_;
+      return i;
+    }
+    i = (i + 1) & (slots_.size() - 1);
+  }
+  return i;
+}
+
+const PointIndex::Cell* PointIndex::find(std::int64_t key) const
+{
+  std::size_t i = slotOf(key);
+  while (slots_[i].key != key) {
+    if (slots_[i].key == kEmptyKey)
+      return nullptr;
+    i = (i + 1) & (slots_.size() - 1);
+  }
+  return &slots_[i];
 }
 
 double PointIndex::nearestSquaredDistance(const Eigen::Vector3d& q) const
@@ -150,8 +226,12 @@ Eigen::Index PointIndex::nearest(const Eigen::Vector3d& q,
   double best = radius_ * radius_;
   Eigen::Index found = -1;
   // The own cell first, then the nearest slab and row first: near points bound the
-  // search early, and a slab or row beyond the bound is skipped whole.
-  scanCell(key, q, normal, min_cosine, best, found);
+  // search early, and a slab or row beyond the bound is skipped whole. Only the cells
+  // its own cell marks as occupied are looked up.
+  const Cell* own = find(key);
+  if (own == nullptr)
+    return -1; // no cell around q holds points
+  scanCell(*own, q, normal, min_cosine, best, found);
   constexpr int kOrder[3] = {0, -1, 1};
   for (const int dx : kOrder) {
     const double gx = gap2[0][dx + 1];
@@ -162,8 +242,10 @@ Eigen::Index PointIndex::nearest(const Eigen::Vector3d& q,
       if (gxy > best)
         continue;
       for (const int dz : kOrder)
-        if ((dx != 0 || dy != 0 || dz != 0) && gxy + gap2[2][dz + 1] <= best)
-          scanCell(offsetKey(key, dx, dy, dz), q, normal, min_cosine, best, found);
+        if ((dx != 0 || dy != 0 || dz != 0) &&
+            (own->occupied & neighborBit(dx, dy, dz)) && gxy + gap2[2][dz + 1] <= best)
+          scanCell(*find(offsetKey(key, dx, dy, dz)), q, normal, min_cosine, best,
+                   found);
     }
   }
   return found;
@@ -176,17 +258,10 @@ std::size_t PointIndex::slotOf(std::int64_t key) const
       (static_cast<std::uint64_t>(key) * 0x9E3779B97F4A7C15ull) >> slot_shift_);
 }
 
-void PointIndex::scanCell(std::int64_t key, const Eigen::Vector3d& q,
+void PointIndex::scanCell(const Cell& cell, const Eigen::Vector3d& q,
                           const Eigen::Vector3d& normal, double min_cosine,
                           double& best, Eigen::Index& found) const
 {
-  std::size_t i = slotOf(key);
-  while (slots_[i].key != key) {
-    if (slots_[i].key == kEmptyKey)
-      return;
-    i = (i + 1) & (slots_.size() - 1);
-  }
-  const Cell& cell = slots_[i];
   const bool check = normals_.cols() != 0 && !normal.isZero();
   for (Eigen::Index k = cell.first; k < cell.last; ++k) {
     if (check && !normals_.col(k).isZero() && normals_.col(k).dot(normal) < min_cosine)

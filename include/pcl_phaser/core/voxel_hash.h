@@ -69,26 +69,36 @@ public:
   bool empty() const { return points_.cols() == 0; }
 
 private:
+  /** Key of a free slot: voxel keys are never negative. */
+  static constexpr std::int64_t kEmptyKey = -1;
+  /** A cell of the table: its voxel key, its points [first, last) in points_, and which
+   *  of the 27 cells around it (itself included) hold points: bit
+   *  (dx + 1) * 9 + (dy + 1) * 3 + (dz + 1). The table holds every cell with points and
+   *  every cell next to one. */
+  struct Cell {
+    std::int64_t key = kEmptyKey;
+    Eigen::Index first = 0, last = 0;
+    std::uint32_t occupied = 0;
+  };
   /** First slot of \a key's probe sequence. */
   std::size_t slotOf(std::int64_t key) const;
-  /** The nearest point of cell \a key to \a q closer than \a best (squared, updated)
-   *  with an agreeing normal, into \a found. */
-  void scanCell(std::int64_t key, const Eigen::Vector3d& q,
+  /** The cell of \a key, or nullptr when the table has none. */
+  const Cell* find(std::int64_t key) const;
+  /** The slot of \a key, added (without points) when absent; grows the table to keep it
+   *  at most a quarter full. */
+  std::size_t insert(std::int64_t key);
+  /** The nearest point of \a cell to \a q closer than \a best (squared, updated) with
+   *  an agreeing normal, into \a found. */
+  void scanCell(const Cell& cell, const Eigen::Vector3d& q,
                 const Eigen::Vector3d& normal, double min_cosine, double& best,
                 Eigen::Index& found) const;
 
   double radius_ = 0.0;
   Eigen::Matrix3Xd points_;
   Eigen::Matrix3Xd normals_; ///< empty, or one per point
-  /** Key of a free slot: voxel keys are never negative. */
-  static constexpr std::int64_t kEmptyKey = -1;
-  /** A cell of the table: its voxel key and its points [first, last) in points_. */
-  struct Cell {
-    std::int64_t key = kEmptyKey;
-    Eigen::Index first = 0, last = 0;
-  };
-  std::vector<Cell> slots_; ///< a power of two of them, at most a quarter used
-  int slot_shift_ = 60;     ///< 64 - log2(slots_.size())
+  std::vector<Cell> slots_;  ///< a power of two of them, at most a quarter used
+  std::size_t used_ = 0;     ///< slots holding a cell
+  int slot_shift_ = 60;      ///< 64 - log2(slots_.size())
 };
 
 } // namespace pcl::phaser
