@@ -249,6 +249,48 @@ int resolveThreadCount(int num_threads)
 
 namespace detail {
 
+namespace {
+
+/** The target's surface patches and what derives from them: the orientation histogram,
+ *  the thickness, the verification index and, about sensor origins, the evenly spaced
+ *  samples of the reverse free-space test with their weights (one thread). */
+void addSurfaceModel(TargetModel& model, const Eigen::Matrix3Xd& points,
+                     double coarse_voxel)
+{
+  const StageParameters& params = model.params;
+  const SurfacePatches patches =
+      surfacePatches(points, kPatchVoxels * coarse_voxel, Eigen::Vector3d::Zero());
+  if (params.orientation_candidates > 0 && params.sensor_centered)
+    model.orientation = orientationSpectrum(patches, params.orientation_bandwidth, 1);
+  model.thickness = patches.thickness;
+  // One point (the centroid) per kIndexThinning-th of the radius: distances move by a
+  // few centimeters, while a cell near the sensor held thousands of points.
+  const double radius = kVerificationVoxels * coarse_voxel;
+  const Eigen::Matrix3Xd thinned = voxelCentroids(points, radius / kIndexThinning);
+  model.index = PointIndex(thinned, radius, patchNormalsAt(patches, thinned));
+  if (params.sensor_centered) {
+    model.samples = voxelCentroids(points, radius);
+    model.sample_weights = orientationWeights(patches, model.samples);
+  }
+}
+
+/** The occupancy spectrum of the target's inner region, the fine grid of the later
+ *  passes (one thread). */
+void addFineGrid(TargetModel& model, const Eigen::Matrix3Xd& points)
+{
+  const std::vector<Eigen::Index> keep = innerRegion(points);
+  Eigen::Matrix3Xd inner(3, keep.size());
+  for (std::size_t i = 0; i < keep.size(); ++i)
+    inner.col(i) = points.col(keep[i]);
+  SpatialGridParameters fine_grid = gridParameters(model.params);
+  fine_grid.padding = 0.1;
+  fine_grid.min_margin = 2.0 * fine_grid.padding * inner.cwiseAbs().maxCoeff();
+  model.fine = occupancySpectrum(makeSpatialGrid(inner, fine_grid), inner, 1);
+  model.fine_energy = spectrumEnergy(model.fine);
+}
+
+} // namespace
+
 std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
                                                  const StageParameters& params,
                                                  const ChannelValues& raw_channels)
@@ -258,48 +300,40 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
   auto model = std::make_shared<TargetModel>();
   model->params = params;
   model->channels = channels.size();
-  double sampling_ms = 0.0, sht_ms = 0.0;
-  model->spherical = sphericalSpectrum(
-      points, channels, params, "target", sampling_ms, sht_ms,
-      params.normalized_refinement ? &model->spherical_support : nullptr);
-  model->spherical_norm = std::sqrt(spectrumSquaredNorm(model->spherical));
   SpatialGridParameters coarse_grid;
   coarse_grid.grid_size = params.spatial_grid_size;
   coarse_grid.voxel_size = params.voxel_size;
   const SpatialGrid coarse = makeSpatialGrid(points, coarse_grid);
-  model->coarse = occupancySpectrum(coarse, points, params.num_threads);
-  model->coarse_energy = spectrumEnergy(model->coarse);
-  const SurfacePatches patches =
-      surfacePatches(points, kPatchVoxels * coarse.voxel_size, Eigen::Vector3d::Zero());
-  if (params.orientation_candidates > 0 && params.sensor_centered)
-    model->orientation =
-        orientationSpectrum(patches, params.orientation_bandwidth, params.num_threads);
-  model->thickness = patches.thickness;
-  // One point (the centroid) per kIndexThinning-th of the radius: distances move by a
-  // few centimeters, while a cell near the sensor held thousands of points.
-  const double radius = kVerificationVoxels * coarse.voxel_size;
-  const Eigen::Matrix3Xd thinned = voxelCentroids(points, radius / kIndexThinning);
-  model->index = PointIndex(thinned, radius, patchNormalsAt(patches, thinned));
-  if (params.sensor_centered) {
-    model->samples = voxelCentroids(points, model->index.radius());
-    model->sample_weights = orientationWeights(patches, model->samples);
-  }
-  if (params.sensor_centered)
-    model->free_space =
-        freeSpace(points, kFreeSpaceBandwidth, kFreeSpaceMargin * coarse.voxel_size,
-                  params.num_threads);
-  if (params.passes > 1) {
-    const std::vector<Eigen::Index> keep = innerRegion(points);
-    Eigen::Matrix3Xd inner(3, keep.size());
-    for (std::size_t i = 0; i < keep.size(); ++i)
-      inner.col(i) = points.col(keep[i]);
-    SpatialGridParameters fine_grid = gridParameters(params);
-    fine_grid.padding = 0.1;
-    fine_grid.min_margin = 2.0 * fine_grid.padding * inner.cwiseAbs().maxCoeff();
-    model->fine =
-        occupancySpectrum(makeSpatialGrid(inner, fine_grid), inner, params.num_threads);
-    model->fine_energy = spectrumEnergy(model->fine);
-  }
+  StageParameters single = params;
+  single.num_threads = 1;
+  // Five independent parts as one-thread tasks, the longest first: each part gives the
+  // same result on any thread count, and in turn they left the other threads idle.
+  runTasks({0, 1, 2, 3, 4}, params.num_threads, [&](int part) {
+    double sampling_ms = 0.0, sht_ms = 0.0;
+    switch (part) {
+    case 0:
+      addSurfaceModel(*model, points, coarse.voxel_size);
+      break;
+    case 1:
+      if (params.passes > 1)
+        addFineGrid(*model, points);
+      break;
+    case 2:
+      model->coarse = occupancySpectrum(coarse, points, 1);
+      model->coarse_energy = spectrumEnergy(model->coarse);
+      break;
+    case 3:
+      if (params.sensor_centered)
+        model->free_space = freeSpace(points, kFreeSpaceBandwidth,
+                                      kFreeSpaceMargin * coarse.voxel_size, 1);
+      break;
+    default:
+      model->spherical = sphericalSpectrum(
+          points, channels, single, "target", sampling_ms, sht_ms,
+          params.normalized_refinement ? &model->spherical_support : nullptr);
+      model->spherical_norm = std::sqrt(spectrumSquaredNorm(model->spherical));
+    }
+  });
   model->preparation_ms = msSince(start);
   return model;
 }

@@ -147,28 +147,6 @@ residualGrid(const SourceContext& s, const SphericalSpectrum& H, PhaserEstimate&
   return C;
 }
 
-/** \a task(k) for k in \a tasks as independent one-thread tasks in one parallel region
- *  (dynamic schedule: a thread the scheduler parks delays only its own task); the
- *  first exception is rethrown after the region. */
-template <typename Task>
-void runTasks(const std::vector<int>& tasks, int num_threads, const Task& task)
-{
-  const int n = static_cast<int>(tasks.size());
-  std::vector<std::exception_ptr> failed(tasks.size());
-#pragma omp parallel for num_threads(std::max(1, std::min(num_threads, n)))            \
-    schedule(dynamic, 1)
-  for (int i = 0; i < n; ++i) {
-    try {
-      task(tasks[static_cast<std::size_t>(i)]);
-    } catch (...) {
-      failed[static_cast<std::size_t>(i)] = std::current_exception();
-    }
-  }
-  for (const std::exception_ptr& f : failed)
-    if (f)
-      std::rethrow_exception(f);
-}
-
 /** Adds the wall time \a wall of a region of tasks to e's translation and verification
  *  times, split in the proportions of the tasks' own times. */
 void splitWallTime(const std::vector<PhaserEstimate>& times, double wall,
