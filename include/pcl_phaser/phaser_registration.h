@@ -5,6 +5,7 @@
 #pragma once
 
 #include <pcl_phaser/core/pipeline.h>
+#include <pcl_phaser/lazy_kdtree.h>
 #include <pcl_phaser/point_channels.h>
 
 #include <pcl/registration/registration.h>
@@ -88,7 +89,13 @@ public:
    */
   using ProjectionCenter = pcl::phaser::ProjectionCenter;
 
-  PhaserRegistration() { reg_name_ = "PhaserRegistration"; }
+  PhaserRegistration()
+  {
+    reg_name_ = "PhaserRegistration";
+    // align() hands each new target to the search tree, which only getFitnessScore()
+    // uses: build its index then, not at every align().
+    tree_.reset(new pcl::phaser::LazyKdTree<PointTarget>);
+  }
   ~PhaserRegistration() override = default;
 
   /** \brief Provide the source cloud (the one to be aligned). A null or empty cloud is

@@ -309,7 +309,6 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
   // Five independent parts as one-thread tasks, the longest first: each part gives the
   // same result on any thread count, and in turn they left the other threads idle.
   runTasks({0, 1, 2, 3, 4}, params.num_threads, [&](int part) {
-    double sampling_ms = 0.0, sht_ms = 0.0;
     switch (part) {
     case 0:
       addSurfaceModel(*model, points, coarse.voxel_size);
@@ -327,11 +326,13 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
         model->free_space = freeSpace(points, kFreeSpaceBandwidth,
                                       kFreeSpaceMargin * coarse.voxel_size, 1);
       break;
-    default:
+    default: {
+      double sampling_ms = 0.0, sht_ms = 0.0; // not reported for the target
       model->spherical = sphericalSpectrum(
           points, channels, single, "target", sampling_ms, sht_ms,
           params.normalized_refinement ? &model->spherical_support : nullptr);
       model->spherical_norm = std::sqrt(spectrumSquaredNorm(model->spherical));
+    }
     }
   });
   model->preparation_ms = msSince(start);

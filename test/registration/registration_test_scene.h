@@ -3,7 +3,7 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  *
  * What the tests of the PCL face share: a synthetic asymmetric scene, poses, the scene
- * seen from a pose, and pose errors.
+ * seen from a pose, pose errors, and one align.
  */
 #pragma once
 
@@ -116,6 +116,18 @@ typename pcl::PointCloud<PointT>::Ptr seenFrom(const pcl::PointCloud<PointT>& sc
   else
     pcl::transformPointCloud(scene, *out, Eigen::Matrix4f(T.inverse()));
   return out;
+}
+
+/** Aligns \a source to \a target with the settings of \a phaser (a
+ *  pcl::Registration); returns hasConverged(). */
+template <typename Registration, typename CloudPtr>
+bool alignOnce(Registration& phaser, const CloudPtr& source, const CloudPtr& target)
+{
+  phaser.setInputSource(source);
+  phaser.setInputTarget(target);
+  typename Registration::PointCloudSource out;
+  phaser.align(out);
+  return phaser.hasConverged();
 }
 
 } // namespace registration_test
