@@ -308,7 +308,7 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
   single.num_threads = 1;
   // Five independent parts as one-thread tasks, the longest first: each part gives the
   // same result on any thread count, and in turn they left the other threads idle.
-  runTasks({0, 1, 2, 3, 4}, params.num_threads, [&](int part) {
+  runTasks(5, params.num_threads, [&](int part) {
     switch (part) {
     case 0:
       addSurfaceModel(*model, points, coarse.voxel_size);

@@ -166,21 +166,20 @@ struct SourceContext {
   Eigen::Matrix3Xd coarse_points;
 };
 
-/** \a task(k) for k in \a tasks as independent one-thread tasks in one parallel region
- *  (dynamic schedule: a thread the scheduler parks delays only its own task); the
- *  first exception is rethrown after the region. */
+/** \a task(k) for k = 0 .. count - 1 as independent one-thread tasks in one parallel
+ *  region (dynamic schedule: a thread the scheduler parks delays only its own task);
+ *  the first exception is rethrown after the region. */
 template <typename Task>
-void runTasks(const std::vector<int>& tasks, int num_threads, const Task& task)
+void runTasks(int count, int num_threads, const Task& task)
 {
-  const int n = static_cast<int>(tasks.size());
-  std::vector<std::exception_ptr> failed(tasks.size());
-#pragma omp parallel for num_threads(std::max(1, std::min(num_threads, n)))            \
+  std::vector<std::exception_ptr> failed(static_cast<std::size_t>(std::max(count, 0)));
+#pragma omp parallel for num_threads(std::max(1, std::min(num_threads, count)))        \
     schedule(dynamic, 1)
-  for (int i = 0; i < n; ++i) {
+  for (int k = 0; k < count; ++k) {
     try {
-      task(tasks[static_cast<std::size_t>(i)]);
+      task(k);
     } catch (...) {
-      failed[static_cast<std::size_t>(i)] = std::current_exception();
+      failed[static_cast<std::size_t>(k)] = std::current_exception();
     }
   }
   for (const std::exception_ptr& f : failed)

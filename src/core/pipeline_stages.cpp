@@ -176,11 +176,8 @@ void translateHypotheses(const SourceContext& s, PhaserEstimate& e,
   single.num_threads = 1;
   std::vector<PhaserEstimate> times(n);
   std::vector<Pose> poses(n);
-  std::vector<int> all(n);
-  for (std::size_t k = 0; k < n; ++k)
-    all[k] = static_cast<int>(k);
   const auto start = Clock::now();
-  runTasks(all, s.p.num_threads, [&](int k) {
+  runTasks(static_cast<int>(n), s.p.num_threads, [&](int k) {
     const RotationHypothesis& h = e.hypotheses[static_cast<std::size_t>(k)];
     Pose& pose = poses[static_cast<std::size_t>(k)];
     const SpatialCorrelationResult shift = shiftOf(
@@ -191,7 +188,7 @@ void translateHypotheses(const SourceContext& s, PhaserEstimate& e,
     pose.v = verify(s, pose.R, pose.t, times[k], 1);
   });
   if (canVerify(s))
-    runTasks(all, s.p.num_threads, [&](int k) {
+    runTasks(static_cast<int>(n), s.p.num_threads, [&](int k) {
       Pose& pose = poses[static_cast<std::size_t>(k)];
       pose = polish(s, pose, times[k], 1);
     });
@@ -217,27 +214,26 @@ void widenHypotheses(const SourceContext& s,
   const std::size_t n = rotations.size();
   std::vector<PhaserEstimate> times(n);
   std::vector<std::vector<Pose>> extra(n);
-  std::vector<int> all(n);
-  for (std::size_t k = 0; k < n; ++k)
-    all[k] = static_cast<int>(k);
   const auto start = Clock::now();
-  runTasks(all, s.p.num_threads, [&](int k) {
+  runTasks(static_cast<int>(n), s.p.num_threads, [&](int k) {
     const auto begin = Clock::now();
     const Eigen::Matrix3d& R = rotations[static_cast<std::size_t>(k)];
+    PhaserEstimate& time = times[static_cast<std::size_t>(k)];
+    // The pass-1 correlation again: keeping every pass-1 volume (16 MB each) for the
+    // few aligns that widen would cost more than recomputing it there.
     const SpatialVolume C = correlateSpectraWhitened(
         s.target.coarse,
         occupancySpectrum(s.target.coarse.grid, R * s.coarse_points, 1), s.p.whitening,
         1);
     std::vector<SpatialCorrelationResult> peaks =
         findDistinctSpatialPeaks(C, 1 + kExtraTranslationPeaks, kPeakSeparation);
-    times[static_cast<std::size_t>(k)].translation_ms += msSince(begin);
+    time.translation_ms += msSince(begin);
     for (std::size_t j = 1; j < peaks.size(); ++j) {
       Pose pose;
       pose.R = R;
       pose.t = peaks[j].shift;
-      pose.v = verify(s, pose.R, pose.t, times[static_cast<std::size_t>(k)], 1);
-      extra[static_cast<std::size_t>(k)].push_back(
-          polish(s, pose, times[static_cast<std::size_t>(k)], 1));
+      pose.v = verify(s, pose.R, pose.t, time, 1);
+      extra[static_cast<std::size_t>(k)].push_back(polish(s, pose, time, 1));
     }
   });
   for (std::size_t k = 0; k < n; ++k)

@@ -176,9 +176,8 @@ struct PhaserResult {
    *  final pose (turned from it by more than 10 deg, or moved by more than two coarse
    *  voxels: farther than a polish climbs), or -infinity when there is none. About
    *  sensor origins, verified needs verification_rank above it by more than 2.33
-   *  runner_up_error: when a distinct pose
-   *  has as much evidence (a symmetric yard, a repeated facade, a narrow view), the
-   *  scene admits both and only the limits chose between them. */
+   *  runner_up_error: when a distinct pose has about as much evidence (a symmetric
+   *  yard, a repeated facade, a narrow view), the scene admits both. */
   double runner_up_rank = -std::numeric_limits<double>::infinity();
   /** \brief Standard error of verification_rank - runner_up_rank from the samples'
    *  paired differences under the two poses (0 without a runner-up, and about
