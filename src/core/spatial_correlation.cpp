@@ -329,22 +329,31 @@ SpatialVolume correlateInto(const SpatialSpectrum& target,
   const std::complex<double>* F = target.coefficients.data();
   const std::complex<double>* G = source.coefficients.data();
   std::complex<double>* C = out.data();
+  // The whitening case is chosen once, not per element: |c|^whitening from the
+  // squared magnitude (std::abs calls the slow hypot).
   const auto product = [=](std::size_t first, std::size_t count) {
-    for (std::size_t i = first; i < first + count; ++i) {
-      const std::complex<double> f = F[i], g = G[i];
-      std::complex<double> c{f.real() * g.real() + f.imag() * g.imag(),
-                             f.imag() * g.real() - f.real() * g.imag()};
-      double factor = scale;
-      if (whitening > 0.0) {
-        // |c|^whitening from the squared magnitude (std::abs calls the slow hypot).
+    const auto each = [&](const auto& magnitude) {
+      for (std::size_t i = first; i < first + count; ++i) {
+        const std::complex<double> f = F[i], g = G[i];
+        const std::complex<double> c{f.real() * g.real() + f.imag() * g.imag(),
+                                     f.imag() * g.real() - f.real() * g.imag()};
         const double n = c.real() * c.real() + c.imag() * c.imag();
-        const double d = whitening == 0.5   ? std::sqrt(std::sqrt(n))
-                         : whitening == 1.0 ? std::sqrt(n)
-                                            : std::pow(n, 0.5 * whitening);
-        factor = n > 0.0 ? scale / d : 0.0;
+        C[i] = c * (n > 0.0 ? scale / magnitude(n) : 0.0);
       }
-      C[i] = c * factor;
-    }
+    };
+    if (whitening == 0.0)
+      for (std::size_t i = first; i < first + count; ++i) {
+        const std::complex<double> f = F[i], g = G[i];
+        C[i] = std::complex<double>{f.real() * g.real() + f.imag() * g.imag(),
+                                    f.imag() * g.real() - f.real() * g.imag()} *
+               scale;
+      }
+    else if (whitening == 0.5)
+      each([](double n) { return std::sqrt(std::sqrt(n)); });
+    else if (whitening == 1.0)
+      each([](double n) { return std::sqrt(n); });
+    else
+      each([whitening](double n) { return std::pow(n, 0.5 * whitening); });
   };
 
   SpatialVolume correlation;

@@ -248,9 +248,12 @@ SpatialCorrelationResult findSpatialPeak(const SpatialVolume& correlation,
   for (int x = 0; x < nx; ++x) {
     const std::size_t begin = static_cast<std::size_t>(x) * slab;
     std::size_t best = begin;
+    double highest = c[begin]; // in a register: no load of c[best] per element
     for (std::size_t i = begin + 1; i < begin + slab; ++i)
-      if (c[i] > c[best])
+      if (c[i] > highest) {
+        highest = c[i];
         best = i;
+      }
     slab_best[static_cast<std::size_t>(x)] = best;
   }
   std::size_t best = slab_best[0];

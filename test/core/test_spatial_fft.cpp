@@ -3,7 +3,8 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  *
  * The split 3-D FFT of the translation stage against a direct DFT, on odd and even
- * dims (odd ny * nz makes the x slabs alternate between two memory alignments), and its
+ * dims (odd ny * nz makes the x slabs alternate between two memory alignments; ny *
+ * (nz/2+1) a multiple of 64 gathers the rows along x into a compact buffer), and its
  * independence of the thread count.
  */
 #include <pcl_phaser/core/spatial_correlation.h>
@@ -54,8 +55,8 @@ std::complex<double> directDft(const SpatialVolume& v, int kx, int ky, int kz)
 TEST(SpatialFft, MatchesTheDirectDftOnOddAndEvenDims)
 {
   for (const Eigen::Vector3i& dims :
-       {Eigen::Vector3i(5, 7, 9), Eigen::Vector3i(6, 5, 8),
-        Eigen::Vector3i(4, 6, 10)}) {
+       {Eigen::Vector3i(5, 7, 9), Eigen::Vector3i(6, 5, 8), Eigen::Vector3i(4, 6, 10),
+        Eigen::Vector3i(3, 16, 6)}) {
     const SpatialVolume v = randomVolume(dims, 3);
     const SpatialSpectrum S = computeSpectrum(v, 2);
     const int hz = S.halfZ();
@@ -78,7 +79,8 @@ TEST(SpatialFft, InverseUndoesForwardAndThreadsDoNotMatter)
   // Correlating with a unit impulse at the origin gives the volume back, so the c2r
   // undoes the r2c: C(lag) = sum_x f(x + lag) d(x) = f(lag).
   for (const Eigen::Vector3i& dims :
-       {Eigen::Vector3i(9, 7, 5), Eigen::Vector3i(8, 6, 12)}) {
+       {Eigen::Vector3i(9, 7, 5), Eigen::Vector3i(8, 6, 12),
+        Eigen::Vector3i(5, 32, 6)}) {
     const SpatialVolume f = randomVolume(dims, 5);
     SpatialVolume delta = randomVolume(dims, 6);
     std::fill(delta.values.begin(), delta.values.end(), 0.0);
