@@ -19,6 +19,8 @@ namespace detail {
 
 namespace {
 
+using RunPreparation = std::function<void(std::size_t first, std::size_t count)>;
+
 /** The plans of one dims. A new-array execution needs the alignment the plan was made
  *  for; x slabs of an odd ny * nz alternate between two, so slabs get a plan per
  * alignment. Rows of complex values are always aligned alike. */
@@ -123,17 +125,25 @@ std::complex<double>* rowBuffer(const FftwBuffer<fftw_complex>& buffers,
 
 /** The 1-D transforms along x of row y (its nz/2+1 = \a row coefficients at every x)
  *  of \a data by \a plan: in place, or gathered into \a buffer (nx x row) and
- *  scattered back (Fft3dPlans::compact_rows). */
+ *  scattered back (Fft3dPlans::compact_rows). \a prepare, if set, is called on each run
+ *  of the row first (while it is in cache when gathered). */
 void transformRow(const Fft3dPlans& plans, fftw_plan plan, int nx, std::size_t row,
-                  int y, std::complex<double>* data, std::complex<double>* buffer)
+                  int y, std::complex<double>* data, std::complex<double>* buffer,
+                  const RunPreparation& prepare = {})
 {
   std::complex<double>* first = data + y * row;
   if (!plans.compact_rows) {
+    if (prepare)
+      for (int x = 0; x < nx; ++x)
+        prepare(x * plans.slab_complex + y * row, row);
     fftw_execute_dft(plan, asFftw(first), asFftw(first));
     return;
   }
-  for (int x = 0; x < nx; ++x)
+  for (int x = 0; x < nx; ++x) {
+    if (prepare)
+      prepare(x * plans.slab_complex + y * row, row);
     std::copy_n(first + x * plans.slab_complex, row, buffer + x * row);
+  }
   fftw_execute_dft(plan, asFftw(buffer), asFftw(buffer));
   for (int x = 0; x < nx; ++x)
     std::copy_n(buffer + x * row, row, first + x * plans.slab_complex);
@@ -180,10 +190,7 @@ void inverseFft3d(
 #pragma omp for schedule(dynamic, 4)
     for (int y = 0; y < ny; ++y) {
       // Row y's 1-D transforms read (x, y) for every x: prepare exactly those runs.
-      if (prepare)
-        for (int x = 0; x < nx; ++x)
-          prepare(x * plans->slab_complex + y * row, row);
-      transformRow(*plans, plans->row_backward.get(), nx, row, y, in, buffer);
+      transformRow(*plans, plans->row_backward.get(), nx, row, y, in, buffer, prepare);
     }
 #pragma omp for schedule(dynamic, 4)
     for (int x = 0; x < nx; ++x) {
