@@ -75,14 +75,18 @@ std::vector<PeakCandidate> upperLocalMaxima(const So3CorrelationGrid& grid, int 
   {
 #pragma omp for schedule(dynamic, 4)
     for (int j = 0; j < N; ++j) {
-      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      // Four independent running extremes (exact in any order): one chain would wait
+      // on each comparison.
+      constexpr double inf = std::numeric_limits<double>::infinity();
+      double lo[4] = {inf, inf, inf, inf}, hi[4] = {-inf, -inf, -inf, -inf};
       for (int a = 0; a < N; ++a)
         for (int c = 0; c < N; ++c) {
-          lo = std::min(lo, grid(j, a, c));
-          hi = std::max(hi, grid(j, a, c));
+          const double v = grid(j, a, c);
+          lo[c & 3] = std::min(lo[c & 3], v);
+          hi[c & 3] = std::max(hi[c & 3], v);
         }
-      row_lo[j] = lo;
-      row_hi[j] = hi;
+      row_lo[j] = std::min(std::min(lo[0], lo[1]), std::min(lo[2], lo[3]));
+      row_hi[j] = std::max(std::max(hi[0], hi[1]), std::max(hi[2], hi[3]));
     }
 #pragma omp single
     {
@@ -92,12 +96,17 @@ std::vector<PeakCandidate> upperLocalMaxima(const So3CorrelationGrid& grid, int 
     }
 #pragma omp for schedule(dynamic, 4)
     for (int j = 0; j < N; ++j)
-      for (int a = 0; a < N; ++a)
+      for (int a = 0; a < N; ++a) {
         for (int c = 0; c < N; ++c) {
           const double v = grid(j, a, c);
           if (v < floor)
             continue;
-          bool is_max = true;
+          // The neighbors along c first: in the same row, and on a smooth grid
+          // usually one of them is higher already.
+          const double left = c > 0 ? grid(j, a, c - 1) : valueAt(grid, j, a, c - 1);
+          const double right =
+              c + 1 < N ? grid(j, a, c + 1) : valueAt(grid, j, a, c + 1);
+          bool is_max = !(left > v) && !(right > v);
           for (int dj = -1; dj <= 1 && is_max; ++dj)
             for (int da = -1; da <= 1 && is_max; ++da)
               for (int dc = -1; dc <= 1 && is_max; ++dc)
@@ -106,6 +115,7 @@ std::vector<PeakCandidate> upperLocalMaxima(const So3CorrelationGrid& grid, int 
           if (is_max)
             rows[j].push_back({v, (static_cast<std::size_t>(j) * N + a) * N + c});
         }
+      }
   }
   std::vector<PeakCandidate> maxima;
   for (const std::vector<PeakCandidate>& row : rows)

@@ -43,12 +43,14 @@ std::vector<RotationHypothesis> rotationHypotheses(const SourceContext& s,
                                                    double h_norm, PhaserEstimate& e)
 {
   const StageParameters& p = s.p;
+  const auto start = Clock::now();
   std::vector<So3GridIndex> peaks;
   if (p.rotation_candidates > 1)
     peaks =
         distinctPeaks(C, p.rotation_candidates, kHypothesisSeparation, p.num_threads);
   if (peaks.empty())
     peaks.push_back(C.argmax(p.num_threads));
+  e.so3_ms += msSince(start); // the peaks are part of the rotation search
   std::vector<RotationHypothesis> out;
   for (const So3GridIndex& peak : peaks) {
     RotationHypothesis h;
@@ -304,8 +306,11 @@ Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_
   std::vector<PoseVerification> v;
   translateHypotheses(s, e, v);
   Pose pose = choose(s, v, e);
-  if (canVerify(s) &&
-      (!meetsLimits(pose.v, s.p) || !standsOut(s, pose, e.hypotheses).stands_out)) {
+  const auto start = Clock::now();
+  const bool widen = canVerify(s) && (!meetsLimits(pose.v, s.p) ||
+                                      !standsOut(s, pose, e.hypotheses).stands_out);
+  e.verification_ms += msSince(start);
+  if (widen) {
     widenHypotheses(s, rotations, e, v);
     pose = choose(s, v, e);
   }

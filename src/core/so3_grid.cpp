@@ -118,21 +118,27 @@ So3GridIndex So3CorrelationGrid::argmaxNearIdentity(double radius) const
   So3GridIndex best{}, nearest{};
   double best_value = -std::numeric_limits<double>::infinity();
   double nearest_angle = std::numeric_limits<double>::infinity();
+  // The angle depends on the row and on a + c only: one table per row, the same
+  // expression as per sample.
+  std::vector<double> angles(2 * static_cast<std::size_t>(N));
   for (int j = 0; j < N; ++j) {
     const double cos_half_beta = std::cos(0.5 * gridEuler({j, 0, 0}, Bo).beta);
     if (2.0 * std::acos(cos_half_beta) > std::max(radius, nearest_angle))
       break;
+    for (int sum = 0; sum < 2 * N; ++sum) {
+      const double half_sum = 0.5 * M_PI * sum / Bo;
+      const double w = std::min(1.0, std::abs(cos_half_beta * std::cos(half_sum)));
+      angles[static_cast<std::size_t>(sum)] = 2.0 * std::acos(w);
+    }
     for (int a = 0; a < N; ++a) {
       const double* row = data_ + (static_cast<std::size_t>(j) * N + a) * row_stride_;
+      const double* angle = angles.data() + a;
       for (int c = 0; c < N; ++c) {
-        const double half_sum = 0.5 * M_PI * (a + c) / Bo;
-        const double w = std::min(1.0, std::abs(cos_half_beta * std::cos(half_sum)));
-        const double angle = 2.0 * std::acos(w);
-        if (angle < nearest_angle) {
-          nearest_angle = angle;
+        if (angle[c] < nearest_angle) {
+          nearest_angle = angle[c];
           nearest = {j, a, c};
         }
-        if (angle <= radius && row[c] > best_value) {
+        if (angle[c] <= radius && row[c] > best_value) {
           best_value = row[c];
           best = {j, a, c};
         }
