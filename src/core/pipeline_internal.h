@@ -140,6 +140,15 @@ constexpr int kPeakSeparation = 3;
 /** Gauss-Newton steps of refinePose on the final pose. */
 constexpr int kPolishIterations = 10;
 
+/** The source seen from a pose's viewpoint: its spectrum (with its support when the
+ *  normalized refinement needs it) and the residual rotation grid with its peak. */
+struct Viewpoint {
+  SphericalSpectrum H;
+  SphericalSupport support;
+  std::shared_ptr<const So3CorrelationGrid> grid;
+  So3GridIndex peak{};
+};
+
 /** A pose and how well it verifies; with the rotation grid of the last accepted
  *  re-projection pass (its peak is near the identity), if one was accepted. */
 struct Pose {
@@ -149,6 +158,9 @@ struct Pose {
   std::shared_ptr<const So3CorrelationGrid> grid;
   So3GridIndex peak{};
   bool verifiable = false; ///< hypotheses and passes are ranked by verification
+  /** What a refused re-projection pass measured from this pose's own viewpoint: the
+   *  final stage starts from it instead of measuring it again. */
+  std::shared_ptr<const Viewpoint> view;
 };
 
 /** Everything one estimate needs about the source. */

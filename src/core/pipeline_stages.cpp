@@ -328,9 +328,11 @@ Pose reprojectionPasses(const SourceContext& s, Pose pose, PhaserEstimate& e)
 {
   const double settled = 0.25 * s.target.fine.grid.voxel_size;
   for (int pass = 1; pass < s.p.passes; ++pass) {
-    const SphericalSpectrum H =
-        sourceSpectrum((pose.R * s.points).colwise() + pose.t, s.channels, s.p, e);
-    const std::shared_ptr<So3CorrelationGrid> C = residualGrid(s, H, e);
+    // With the support the final stage needs, should this pass be refused.
+    auto view = std::make_shared<Viewpoint>();
+    view->H = sourceSpectrum((pose.R * s.points).colwise() + pose.t, s.channels, s.p, e,
+                             s.p.normalized_refinement ? &view->support : nullptr);
+    const std::shared_ptr<So3CorrelationGrid> C = residualGrid(s, view->H, e);
     Pose next;
     next.verifiable = pose.verifiable;
     next.peak = pose.verifiable ? C->argmaxNearIdentity(kHypothesisSeparation)
@@ -344,8 +346,12 @@ Pose reprojectionPasses(const SourceContext& s, Pose pose, PhaserEstimate& e)
             .shift;
     next.t += shift;
     next.v = verify(s, next.R, next.t, e);
-    if (!accept(next, pose))
+    if (!accept(next, pose)) {
+      view->grid = C;
+      view->peak = next.peak;
+      pose.view = std::move(view);
       break;
+    }
     pose = next;
     e.passes = pass + 1;
     if (shift.norm() < settled)
@@ -362,18 +368,28 @@ void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
 {
   const TargetModel& target = s.target;
   const StageParameters& p = s.p;
-  SphericalSupport support;
-  const SphericalSpectrum H =
-      sourceSpectrum((pose.R * s.points).colwise() + pose.t, s.channels, p, e,
-                     p.normalized_refinement ? &support : nullptr);
+  // The source from this viewpoint, as a refused pass measured it, or measured now.
+  Viewpoint view;
+  if (pose.view)
+    view = *pose.view;
+  else
+    view.H = sourceSpectrum((pose.R * s.points).colwise() + pose.t, s.channels, p, e,
+                            p.normalized_refinement ? &view.support : nullptr);
+  const SphericalSpectrum& H = view.H;
+  const SphericalSupport& support = view.support;
   // After an accepted pass the residual is within the grid spacing: refine from the
   // identity; else search the residual grid (tilt below kResidualTilt) first.
   Eigen::Matrix3d start = Eigen::Matrix3d::Identity();
   if (!pose.grid) {
-    pose.grid = residualGrid(s, H, e);
-    // A polished pose is within a grid cell or two: its peak is the one near it.
-    pose.peak = pose.verifiable ? pose.grid->argmaxNearIdentity(kHypothesisSeparation)
-                                : pose.grid->argmax(p.num_threads);
+    if (view.grid) {
+      pose.grid = view.grid;
+      pose.peak = view.peak;
+    } else {
+      pose.grid = residualGrid(s, H, e);
+      // A polished pose is within a grid cell or two: its peak is the one near it.
+      pose.peak = pose.verifiable ? pose.grid->argmaxNearIdentity(kHypothesisSeparation)
+                                  : pose.grid->argmax(p.num_threads);
+    }
     start = rotationFromEuler(gridEuler(pose.peak, p.bandwidth));
   }
   // Held here: pose (and its grid) may be replaced below.
