@@ -206,7 +206,7 @@ std::string validateParameters(const PhaserParameters& p)
     return "voxel size must be >= 0 (0 = derived from the grid size), got " +
            std::to_string(p.voxel_size);
   if (p.refinement_iterations < 0 || p.refinement_iterations > 10)
-    return "refinement iterations must be in [0, 20], got " +
+    return "refinement iterations must be in [0, 10], got " +
            std::to_string(p.refinement_iterations);
   if (p.rotation_candidates < 1 || p.rotation_candidates > 10)
     return "number of rotation candidates must be in [1, 10], got " +

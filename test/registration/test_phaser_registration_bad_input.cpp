@@ -127,6 +127,12 @@ TEST(PhaserRegistrationBadInput, ParametersOutOfRange)
   setting([](auto& q) { q.voxel_size = std::numeric_limits<double>::quiet_NaN(); });
   setting([](auto& q) { q.voxel_size = 1e-6; }); // would need 10^7 voxels per axis
   setting([](auto& q) { q.refinement_iterations = -1; });
+  setting([](auto& q) { q.refinement_iterations = 11; });
+  setting([](auto& q) { q.rotation_candidates = 0; });
+  setting([](auto& q) { q.passes = 6; });
+  setting([](auto& q) { q.fusion_levels = 0; });
+  setting([](auto& q) { q.orientation_candidates = 21; });
+  setting([](auto& q) { q.whitening = 1.5; });
   check([](auto& p) { p.setNumberOfThreads(100000); });
   setting([](auto& q) { q.min_peak_score = -1.0; });
   setting([](auto& q) { q.min_normalized_overlap = -0.1; });
