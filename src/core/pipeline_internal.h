@@ -135,6 +135,12 @@ constexpr double kPatchVoxels = 1.0;
  *  pass-1 choice misses the verification limits or does not stand out (standsOut), and
  *  their least separation in coarse voxels. */
 constexpr int kExtraTranslationPeaks = 2;
+/** Peaks of the orientation histograms' correlation beyond the orientation candidates
+ *  that become hypotheses of their own in that case too: a scene of orthogonal walls
+ *  and ground has near-equal peaks at its 90, 120 and 180 deg symmetric orientations,
+ *  and on a partial view the right one can rank below ten of them (benchmarks.md
+ *  9.19). */
+constexpr int kSpareOrientationPeaks = 10;
 constexpr int kPeakSeparation = 3;
 
 /** Gauss-Newton steps of refinePose on the final pose. */

@@ -37,10 +37,12 @@ PoseVerification verify(const SourceContext& s, const Eigen::Matrix3d& R,
 }
 
 /** Rotation hypotheses: the distinct peaks of the range correlation \a C and of the
- *  orientation histograms' correlation. */
-std::vector<RotationHypothesis> rotationHypotheses(const SourceContext& s,
-                                                   const So3CorrelationGrid& C,
-                                                   double h_norm, PhaserEstimate& e)
+ *  orientation histograms' correlation; the next kSpareOrientationPeaks distinct peaks
+ *  of the latter into \a spare (the peaks are taken greedily, so the first ones are
+ *  those a request for fewer gives). */
+std::vector<RotationHypothesis>
+rotationHypotheses(const SourceContext& s, const So3CorrelationGrid& C, double h_norm,
+                   PhaserEstimate& e, std::vector<RotationHypothesis>& spare)
 {
   const StageParameters& p = s.p;
   const auto start = Clock::now();
@@ -68,13 +70,15 @@ std::vector<RotationHypothesis> rotationHypotheses(const SourceContext& s,
                                     ->correlate(s.target.orientation, O, p.num_threads);
   const double norm =
       std::sqrt(spectrumSquaredNorm(s.target.orientation) * spectrumSquaredNorm(O));
-  for (const So3GridIndex& peak : distinctPeaks(Co, p.orientation_candidates,
-                                                kHypothesisSeparation, p.num_threads)) {
+  const std::vector<So3GridIndex> peaks_o =
+      distinctPeaks(Co, p.orientation_candidates + kSpareOrientationPeaks,
+                    kHypothesisSeparation, p.num_threads);
+  for (std::size_t k = 0; k < peaks_o.size(); ++k) {
     RotationHypothesis h;
-    h.rotation = rotationFromEuler(gridEuler(peak, p.orientation_bandwidth));
-    h.rotation_score = norm > 0.0 ? Co(peak) / norm : 0.0;
+    h.rotation = rotationFromEuler(gridEuler(peaks_o[k], p.orientation_bandwidth));
+    h.rotation_score = norm > 0.0 ? Co(peaks_o[k]) / norm : 0.0;
     h.from_orientation = true;
-    out.push_back(h);
+    (static_cast<int>(k) < p.orientation_candidates ? out : spare).push_back(h);
   }
   e.orientation_ms += msSince(t);
   return out;
@@ -164,27 +168,28 @@ void splitWallTime(const std::vector<PhaserEstimate>& times, double wall,
   e.verification_ms += busy > 0.0 ? wall * verification / busy : 0.0;
 }
 
-/** Every hypothesis through the coarse translation search and verification, then
- *  (where poses can be verified) the polish, into e.hypotheses and \a v: before the
+/** Every hypothesis from index \a first on through the coarse translation search and
+ *  verification, then (where poses can be verified) the polish, into e.hypotheses and
+ *  \a v (resized to hold them): before the
  *  polish the right hypothesis often ranks low (a voxel and a grid cell off, its
  * samples fall in free space), so every one is polished. Each hypothesis is a
  * one-thread task (runTasks), so its result does not depend on the thread count. The
  * stage times are the wall time of the regions, split in the tasks' proportions. */
 void translateHypotheses(const SourceContext& s, PhaserEstimate& e,
-                         std::vector<PoseVerification>& v)
+                         std::vector<PoseVerification>& v, std::size_t first = 0)
 {
-  const std::size_t n = e.hypotheses.size();
+  const std::size_t n = e.hypotheses.size() - first;
   PhaserParameters single = s.p;
   single.num_threads = 1;
   std::vector<PhaserEstimate> times(n);
   std::vector<Pose> poses(n);
   const auto start = Clock::now();
   runTasks(static_cast<int>(n), s.p.num_threads, [&](int k) {
-    const RotationHypothesis& h = e.hypotheses[static_cast<std::size_t>(k)];
+    RotationHypothesis& h = e.hypotheses[first + static_cast<std::size_t>(k)];
     Pose& pose = poses[static_cast<std::size_t>(k)];
     const SpatialCorrelationResult shift = shiftOf(
         s.target.coarse, h.rotation * s.coarse_points, s.p.whitening, single, times[k]);
-    e.hypotheses[static_cast<std::size_t>(k)].overlap = shift.peak_value;
+    h.overlap = shift.peak_value;
     pose.R = h.rotation;
     pose.t = shift.shift;
     pose.v = verify(s, pose.R, pose.t, times[k], 1);
@@ -194,11 +199,11 @@ void translateHypotheses(const SourceContext& s, PhaserEstimate& e,
       Pose& pose = poses[static_cast<std::size_t>(k)];
       pose = polish(s, pose, times[k], 1);
     });
-  v.assign(n, PoseVerification{});
+  v.resize(first + n);
   for (std::size_t k = 0; k < n; ++k) {
-    e.hypotheses[k].rotation = poses[k].R;
-    e.hypotheses[k].translation = poses[k].t;
-    v[k] = poses[k].v;
+    e.hypotheses[first + k].rotation = poses[k].R;
+    e.hypotheses[first + k].translation = poses[k].t;
+    v[first + k] = poses[k].v;
   }
   splitWallTime(times, msSince(start), e);
 }
@@ -292,14 +297,16 @@ Pose choose(const SourceContext& s, const std::vector<PoseVerification>& v,
 /** Pass 1: every hypothesis through the coarse translation search and verification,
  *  then choose(). Where poses can be verified and the chosen one would not be claimed
  *  (it misses the limits, or a distinct hypothesis ranks about as high: standsOut),
- *  widenHypotheses and choose again. Otherwise (object scans, or clouds so noisy or
+ *  the spare orientation peaks become hypotheses too, widenHypotheses, and choose
+ *  again. Otherwise (object scans, or clouds so noisy or
  *  sparse that no pose verifies, e.g. 1 m of noise at 40 dB PSNR) verification cannot
  *  rank them and the range peak that overlaps most wins, as the orientation histograms
  *  are as unreliable as the normals. */
 Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_norm,
                   PhaserEstimate& e)
 {
-  e.hypotheses = rotationHypotheses(s, C, h_norm, e);
+  std::vector<RotationHypothesis> spare;
+  e.hypotheses = rotationHypotheses(s, C, h_norm, e, spare);
   std::vector<Eigen::Matrix3d> rotations;
   for (const RotationHypothesis& h : e.hypotheses)
     rotations.push_back(h.rotation); // before the polish moves them
@@ -311,6 +318,9 @@ Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_
                                       !standsOut(s, pose, e.hypotheses).stands_out);
   e.verification_ms += msSince(start);
   if (widen) {
+    const std::size_t first = e.hypotheses.size();
+    e.hypotheses.insert(e.hypotheses.end(), spare.begin(), spare.end());
+    translateHypotheses(s, e, v, first);
     widenHypotheses(s, rotations, e, v);
     pose = choose(s, v, e);
   }

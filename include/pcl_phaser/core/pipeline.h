@@ -70,7 +70,8 @@ struct PhaserParameters {
    *  (measured in doc/benchmarks.md section 6). Default true. */
   bool normalized_refinement = true;
   /** \brief Rotation hypotheses from the surface-orientation histograms, tried beside
-   *  the range peaks about sensor origins, 0..20 (0: none). */
+   *  the range peaks about sensor origins, 0..20 (0: none). When the best of them
+   *  would not be claimed, the next ten peaks of the histograms are tried as well. */
   int orientation_candidates = 10;
   /** \brief Bandwidth of the orientation histograms, 8..128. */
   int orientation_bandwidth = 32;
