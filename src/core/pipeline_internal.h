@@ -35,6 +35,13 @@ namespace pcl::phaser {
  *  needs for its pose to be verified: fewer cannot tell a pose from another. */
 constexpr int kMinVerificationSamples = 20;
 
+/** Most verification samples of the source, and of the target for the reverse
+ *  free-space test: an inlier share from this many has a standard error below 0.004,
+ *  while a volumetric cloud (one sample per occupied cell of the radius) could give
+ *  hundreds of thousands, each looked up in every verification and polish sweep. A
+ *  LiDAR scan gives about 3,000, a Kinect frame 15,000. */
+constexpr Eigen::Index kMaxVerificationSamples = 16384;
+
 /** How far (radians, at B = 64, scaled by 64 / B) the normalized refinement may move
  * the rotation from the maximum of plain C; the radius was chosen on the demo pairs and
  *  the NEES study (doc/benchmarks.md section 10). */

@@ -70,13 +70,14 @@ rotationHypotheses(const SourceContext& s, const So3CorrelationGrid& C, double h
                                     ->correlate(s.target.orientation, O, p.num_threads);
   const double norm =
       std::sqrt(spectrumSquaredNorm(s.target.orientation) * spectrumSquaredNorm(O));
-  const std::vector<So3GridIndex> peaks_o =
+  const std::vector<So3GridIndex> orientation_peaks =
       distinctPeaks(Co, p.orientation_candidates + kSpareOrientationPeaks,
                     kHypothesisSeparation, p.num_threads);
-  for (std::size_t k = 0; k < peaks_o.size(); ++k) {
+  for (std::size_t k = 0; k < orientation_peaks.size(); ++k) {
+    const So3GridIndex& peak = orientation_peaks[k];
     RotationHypothesis h;
-    h.rotation = rotationFromEuler(gridEuler(peaks_o[k], p.orientation_bandwidth));
-    h.rotation_score = norm > 0.0 ? Co(peaks_o[k]) / norm : 0.0;
+    h.rotation = rotationFromEuler(gridEuler(peak, p.orientation_bandwidth));
+    h.rotation_score = norm > 0.0 ? Co(peak) / norm : 0.0;
     h.from_orientation = true;
     (static_cast<int>(k) < p.orientation_candidates ? out : spare).push_back(h);
   }
@@ -170,11 +171,11 @@ void splitWallTime(const std::vector<PhaserEstimate>& times, double wall,
 
 /** Every hypothesis from index \a first on through the coarse translation search and
  *  verification, then (where poses can be verified) the polish, into e.hypotheses and
- *  \a v (resized to hold them): before the
- *  polish the right hypothesis often ranks low (a voxel and a grid cell off, its
- * samples fall in free space), so every one is polished. Each hypothesis is a
- * one-thread task (runTasks), so its result does not depend on the thread count. The
- * stage times are the wall time of the regions, split in the tasks' proportions. */
+ *  \a v (resized to hold them): before the polish the right hypothesis often ranks low
+ *  (a voxel and a grid cell off, its samples fall in free space), so every one is
+ *  polished. Each hypothesis is a one-thread task (runTasks), so its result does not
+ *  depend on the thread count. The stage times are the wall time of the regions, split
+ *  in the tasks' proportions. */
 void translateHypotheses(const SourceContext& s, PhaserEstimate& e,
                          std::vector<PoseVerification>& v, std::size_t first = 0)
 {
@@ -296,12 +297,12 @@ Pose choose(const SourceContext& s, const std::vector<PoseVerification>& v,
 
 /** Pass 1: every hypothesis through the coarse translation search and verification,
  *  then choose(). Where poses can be verified and the chosen one would not be claimed
- *  (it misses the limits, or a distinct hypothesis ranks about as high: standsOut),
- *  the spare orientation peaks become hypotheses too, widenHypotheses, and choose
- *  again. Otherwise (object scans, or clouds so noisy or
- *  sparse that no pose verifies, e.g. 1 m of noise at 40 dB PSNR) verification cannot
- *  rank them and the range peak that overlaps most wins, as the orientation histograms
- *  are as unreliable as the normals. */
+ *  (it misses the limits, or a distinct hypothesis ranks about as high: standsOut), the
+ *  spare orientation peaks become hypotheses too, then widenHypotheses, and choose()
+ *  again. Otherwise (object scans, or clouds so noisy or sparse that no pose verifies,
+ *  e.g. 1 m of noise at 40 dB PSNR) verification cannot rank them and the range peak
+ *  that overlaps most wins, as the orientation histograms are as unreliable as the
+ *  normals. */
 Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_norm,
                   PhaserEstimate& e)
 {
@@ -338,7 +339,7 @@ Pose reprojectionPasses(const SourceContext& s, Pose pose, PhaserEstimate& e)
 {
   const double settled = 0.25 * s.target.fine.grid.voxel_size;
   for (int pass = 1; pass < s.p.passes; ++pass) {
-    // With the support the final stage needs, should this pass be refused.
+    // With the support the final stage needs: a refused pass hands it over.
     auto view = std::make_shared<Viewpoint>();
     view->H = sourceSpectrum((pose.R * s.points).colwise() + pose.t, s.channels, s.p, e,
                              s.p.normalized_refinement ? &view->support : nullptr);

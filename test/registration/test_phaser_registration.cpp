@@ -121,6 +121,28 @@ TEST(PhaserRegistration, DegenerateInputsDoNotConverge)
   }
 }
 
+TEST(PhaserRegistration, VolumetricNoiseDoesNotConvergeOnBoundedSamples)
+{
+  // 30,000 points uniform in a 10 x 10 x 1 m box: no surface, and one verification
+  // sample per occupied cell of the radius, about 30,000 of them, more than the engine
+  // keeps (16,384: kMaxVerificationSamples); every other one is kept.
+  auto noise = pcl::make_shared<CloudXYZ>();
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-5.0f, 5.0f);
+  for (int i = 0; i < 30000; ++i)
+    noise->push_back(pcl::PointXYZ(u(rng), u(rng), 0.1f * u(rng)));
+  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
+  phaser.setNumberOfThreads(2);
+  phaser.setInputSource(noise);
+  phaser.setInputTarget(noise);
+  CloudXYZ out;
+  phaser.align(out);
+  EXPECT_FALSE(phaser.hasConverged());
+  EXPECT_TRUE(phaser.getResult().error.empty()) << phaser.getResult().error;
+  EXPECT_GT(phaser.getResult().verification_samples, 8000);
+  EXPECT_LE(phaser.getResult().verification_samples, 16384);
+}
+
 TEST(PhaserRegistration, CentroidModeHandlesLargeOffsets)
 {
   // PCL's SAC-IA pattern: the source moved by 100 m and yawed by 90 degrees.
