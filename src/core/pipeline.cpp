@@ -69,16 +69,19 @@ std::vector<Eigen::Index> innerRegion(const Eigen::Matrix3Xd& points)
   return inner;
 }
 
-/** \a points, or evenly every k-th of them (k = ceil(n / \a max)) when there are more
- *  than \a max (kMaxVerificationSamples). */
-Eigen::Matrix3Xd evenSubset(const Eigen::Matrix3Xd& points, Eigen::Index max)
+/** The verification samples of \a points: one (the centroid) per cube of \a radius,
+ *  evenly every k-th of them when there are more than kMaxVerificationSamples (k =
+ *  ceil(n / kMaxVerificationSamples)). */
+Eigen::Matrix3Xd verificationSamples(const Eigen::Matrix3Xd& points, double radius)
 {
-  if (points.cols() <= max)
-    return points;
-  const Eigen::Index step = (points.cols() + max - 1) / max;
-  Eigen::Matrix3Xd kept(3, (points.cols() + step - 1) / step);
+  Eigen::Matrix3Xd all = voxelCentroids(points, radius);
+  if (all.cols() <= kMaxVerificationSamples)
+    return all;
+  const Eigen::Index step =
+      (all.cols() + kMaxVerificationSamples - 1) / kMaxVerificationSamples;
+  Eigen::Matrix3Xd kept(3, (all.cols() + step - 1) / step);
   for (Eigen::Index i = 0; i < kept.cols(); ++i)
-    kept.col(i) = points.col(i * step);
+    kept.col(i) = all.col(i * step);
   return kept;
 }
 
@@ -282,7 +285,7 @@ void addSurfaceModel(TargetModel& model, const Eigen::Matrix3Xd& points,
   const Eigen::Matrix3Xd thinned = voxelCentroids(points, radius / kIndexThinning);
   model.index = PointIndex(thinned, radius, patchNormalsAt(patches, thinned));
   if (params.sensor_centered) {
-    model.samples = evenSubset(voxelCentroids(points, radius), kMaxVerificationSamples);
+    model.samples = verificationSamples(points, radius);
     model.sample_weights = orientationWeights(patches, model.samples);
   }
 }
@@ -363,8 +366,7 @@ SourceContext sourceContext(const TargetModel& target, const Eigen::Matrix3Xd& p
   SourceContext s{target, points, channels, p, {}, {}, {}, {}};
   s.coarse_points =
       voxelCentroids(points, target.coarse.grid.voxel_size / kIndexThinning);
-  s.samples.points = evenSubset(voxelCentroids(points, e.verification_radius),
-                                kMaxVerificationSamples);
+  s.samples.points = verificationSamples(points, e.verification_radius);
   s.patches = surfacePatches(points, kPatchVoxels * target.coarse.grid.voxel_size,
                              Eigen::Vector3d::Zero());
   s.samples.weights = orientationWeights(s.patches, s.samples.points);

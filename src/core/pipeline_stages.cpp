@@ -380,21 +380,23 @@ void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
   const TargetModel& target = s.target;
   const StageParameters& p = s.p;
   // The source from this viewpoint, as a refused pass measured it, or measured now.
-  Viewpoint view;
-  if (pose.view)
-    view = *pose.view;
-  else
-    view.H = sourceSpectrum((pose.R * s.points).colwise() + pose.t, s.channels, p, e,
-                            p.normalized_refinement ? &view.support : nullptr);
-  const SphericalSpectrum& H = view.H;
-  const SphericalSupport& support = view.support;
+  std::shared_ptr<const Viewpoint> view = pose.view;
+  if (!view) {
+    auto measured = std::make_shared<Viewpoint>();
+    measured->H =
+        sourceSpectrum((pose.R * s.points).colwise() + pose.t, s.channels, p, e,
+                       p.normalized_refinement ? &measured->support : nullptr);
+    view = std::move(measured);
+  }
+  const SphericalSpectrum& H = view->H;
+  const SphericalSupport& support = view->support;
   // After an accepted pass the residual is within the grid spacing: refine from the
   // identity; else search the residual grid (tilt below kResidualTilt) first.
   Eigen::Matrix3d start = Eigen::Matrix3d::Identity();
   if (!pose.grid) {
-    if (view.grid) {
-      pose.grid = view.grid;
-      pose.peak = view.peak;
+    if (view->grid) {
+      pose.grid = view->grid;
+      pose.peak = view->peak;
     } else {
       pose.grid = residualGrid(s, H, e);
       // A polished pose is within a grid cell or two: its peak is the one near it.

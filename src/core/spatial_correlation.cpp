@@ -332,22 +332,21 @@ SpatialVolume correlateInto(const SpatialSpectrum& target,
   // The whitening case is chosen once, not per element: |c|^whitening from the
   // squared magnitude (std::abs calls the slow hypot).
   const auto product = [=](std::size_t first, std::size_t count) {
+    const auto cross = [&](std::size_t i) {
+      const std::complex<double> f = F[i], g = G[i];
+      return std::complex<double>{f.real() * g.real() + f.imag() * g.imag(),
+                                  f.imag() * g.real() - f.real() * g.imag()};
+    };
     const auto each = [&](const auto& magnitude) {
       for (std::size_t i = first; i < first + count; ++i) {
-        const std::complex<double> f = F[i], g = G[i];
-        const std::complex<double> c{f.real() * g.real() + f.imag() * g.imag(),
-                                     f.imag() * g.real() - f.real() * g.imag()};
+        const std::complex<double> c = cross(i);
         const double n = c.real() * c.real() + c.imag() * c.imag();
         C[i] = c * (n > 0.0 ? scale / magnitude(n) : 0.0);
       }
     };
     if (whitening == 0.0)
-      for (std::size_t i = first; i < first + count; ++i) {
-        const std::complex<double> f = F[i], g = G[i];
-        C[i] = std::complex<double>{f.real() * g.real() + f.imag() * g.imag(),
-                                    f.imag() * g.real() - f.real() * g.imag()} *
-               scale;
-      }
+      for (std::size_t i = first; i < first + count; ++i)
+        C[i] = cross(i) * scale;
     else if (whitening == 0.5)
       each([](double n) { return std::sqrt(std::sqrt(n)); });
     else if (whitening == 1.0)
