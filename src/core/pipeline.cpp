@@ -285,6 +285,11 @@ void addSurfaceModel(TargetModel& model, const Eigen::Matrix3Xd& points,
   const Eigen::Matrix3Xd thinned = voxelCentroids(points, radius / kIndexThinning);
   model.index = PointIndex(thinned, radius, patchNormalsAt(patches, thinned));
   if (params.sensor_centered) {
+    const double reach = kPolishReachVoxels * coarse_voxel;
+    const Eigen::Matrix3Xd reach_points =
+        voxelCentroids(points, reach / kIndexThinning);
+    model.reach_index =
+        PointIndex(reach_points, reach, patchNormalsAt(patches, reach_points));
     model.samples = verificationSamples(points, radius);
     model.sample_weights = orientationWeights(patches, model.samples);
   }

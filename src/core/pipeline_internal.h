@@ -78,6 +78,9 @@ public:
   SpatialSpectrum coarse, fine;
   double coarse_energy = 0.0, fine_energy = 0.0; ///< spectrumEnergy of coarse and fine
   PointIndex index;                              ///< target points, for verifyPose
+  /** The target points at a coarse voxel's radius (kPolishReachVoxels): the first step
+   *  of every polish matches against it (sensor-centered only). */
+  PointIndex reach_index;
   double thickness = 0.0; ///< SurfacePatches::thickness of the target
   FreeSpace free_space; ///< what the target's sensor saw through (sensor-centered only)
   /** Evenly spaced target points with their orientation weights: the reverse
@@ -102,6 +105,12 @@ constexpr double kResidualTilt = 20.0 * M_PI / 180.0;
 
 /** Verification radius, in coarse voxels. */
 constexpr double kVerificationVoxels = 0.5;
+
+/** Radius, in coarse voxels, of the index the polish takes its first step against. A
+ *  coarse translation peak can be a voxel off, twice the verification radius: most
+ *  samples then have no target point within that radius, and the few that do (the
+ *  ground) can walk the climb away from the truth (benchmarks.md 9.21). */
+constexpr double kPolishReachVoxels = 1.0;
 
 /** The verification index keeps one point per cube of its radius / kIndexThinning;
  *  the pass-1 occupancy one per cube of a coarse voxel / kIndexThinning. */

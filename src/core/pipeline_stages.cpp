@@ -122,14 +122,16 @@ bool canVerify(const SourceContext& s)
 }
 
 /** \a pose refined by refinePoseWithin (within the hypothesis separation and two
- *  coarse voxels), kept when it verifies better. */
+ *  coarse voxels; its first step against the target's reach index), kept when it
+ *  verifies better. */
 Pose polish(const SourceContext& s, const Pose& pose, PhaserEstimate& e,
             int num_threads)
 {
   const auto start = Clock::now();
   const RigidPose refined =
       refinePoseWithin(s.target.index, s.samples, {pose.R, pose.t}, kPolishIterations,
-                       kHypothesisSeparation, 2.0 * s.target.coarse.grid.voxel_size);
+                       kHypothesisSeparation, 2.0 * s.target.coarse.grid.voxel_size,
+                       &s.target.reach_index);
   e.verification_ms += msSince(start);
   if (refined.R == pose.R && refined.t == pose.t)
     return pose; // refused or nothing to climb: verifies as before

@@ -62,31 +62,54 @@ int sweep(const PointIndex& target, const VerificationSamples& s, const RigidPos
   return matched;
 }
 
-/** refinePose, abandoned (returning \a start) as soon as a step leaves the trust
- *  region of \a max_angle (radians) and \a max_shift (meters) around \a start. */
-RigidPose refine(const PointIndex& target, const VerificationSamples& s,
-                 const RigidPose& start, int iterations, double max_angle,
-                 double max_shift)
+/** One damped Gauss-Newton step of \a pose against \a target, its increment (rotation
+ *  vector, then translation) into \a delta. False, with \a pose unchanged, when fewer
+ *  than six samples match or the step is not finite. */
+bool step(const PointIndex& target, const VerificationSamples& s, RigidPose& pose,
+          Eigen::Matrix<double, 6, 1>& delta)
 {
-  RigidPose pose = start;
   Eigen::Matrix<double, 6, 6> H;
   Eigen::Matrix<double, 6, 1> g;
+  if (sweep(target, s, pose, H, g) < 6)
+    return false;
+  // A little damping keeps directions the matches leave free (ground only, one wall
+  // direction) where they are.
+  H.diagonal().array() += 1e-6 * H.trace() + 1e-12;
+  delta = -H.ldlt().solve(g);
+  if (!delta.allFinite())
+    return false;
+  const Eigen::Matrix3d dR = expSo3(delta.head<3>());
+  pose.R = dR * pose.R;
+  pose.t = dR * pose.t + delta.tail<3>();
+  return true;
+}
+
+/** refinePose, abandoned as soon as a step leaves the trust region of \a max_angle
+ *  (radians) and \a max_shift (meters) around its center: \a start, or the pose a
+ *  \a reach step put it at (that step skipped if it fails or leaves the region around
+ *  \a start). The center is returned when a step leaves. */
+RigidPose refine(const PointIndex& target, const VerificationSamples& s,
+                 const RigidPose& start, int iterations, double max_angle,
+                 double max_shift, const PointIndex* reach)
+{
+  // The source's origin (its sensor) lands at t: how far it moved.
+  const auto outside = [&](const RigidPose& pose, const RigidPose& center) {
+    const Eigen::AngleAxisd turn(pose.R * center.R.transpose());
+    return std::abs(turn.angle()) > max_angle || (pose.t - center.t).norm() > max_shift;
+  };
+  Eigen::Matrix<double, 6, 1> delta;
+  RigidPose center = start;
+  if (reach) {
+    RigidPose reached = start;
+    if (step(*reach, s, reached, delta) && !outside(reached, start))
+      center = reached;
+  }
+  RigidPose pose = center;
   for (int it = 0; it < iterations; ++it) {
-    if (sweep(target, s, pose, H, g) < 6)
+    if (!step(target, s, pose, delta))
       break;
-    // A little damping keeps directions the matches leave free (ground only, one wall
-    // direction) where they are.
-    H.diagonal().array() += 1e-6 * H.trace() + 1e-12;
-    const Eigen::Matrix<double, 6, 1> delta = -H.ldlt().solve(g);
-    if (!delta.allFinite())
-      break;
-    const Eigen::Matrix3d dR = expSo3(delta.head<3>());
-    pose.R = dR * pose.R;
-    pose.t = dR * pose.t + delta.tail<3>();
-    const Eigen::AngleAxisd turn(pose.R * start.R.transpose());
-    // The source's origin (its sensor) lands at t: how far it moved.
-    if (std::abs(turn.angle()) > max_angle || (pose.t - start.t).norm() > max_shift)
-      return start;
+    if (outside(pose, center))
+      return center;
     if (delta.head<3>().norm() < kMinStepAngle &&
         delta.tail<3>().norm() < kMinStepShift)
       break;
@@ -100,14 +123,14 @@ RigidPose refinePose(const PointIndex& target, const VerificationSamples& s,
                      const RigidPose& start, int iterations)
 {
   const double unbounded = std::numeric_limits<double>::infinity();
-  return refine(target, s, start, iterations, unbounded, unbounded);
+  return refine(target, s, start, iterations, unbounded, unbounded, nullptr);
 }
 
 RigidPose refinePoseWithin(const PointIndex& target, const VerificationSamples& samples,
                            const RigidPose& start, int iterations, double max_angle,
-                           double max_shift)
+                           double max_shift, const PointIndex* reach)
 {
-  return refine(target, samples, start, iterations, max_angle, max_shift);
+  return refine(target, samples, start, iterations, max_angle, max_shift, reach);
 }
 
 } // namespace pcl::phaser

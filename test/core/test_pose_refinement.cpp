@@ -82,6 +82,15 @@ Scene makeScene()
   return s;
 }
 
+/** \a truth turned by 2 deg about (1, 2, 3) and moved by \a shift. */
+RigidPose offset(const RigidPose& truth, const Eigen::Vector3d& shift)
+{
+  RigidPose pose;
+  pose.R = Eigen::AngleAxisd(2 * kDeg, Eigen::Vector3d(1, 2, 3).normalized()) * truth.R;
+  pose.t = truth.t + shift;
+  return pose;
+}
+
 double angleBetween(const Eigen::Matrix3d& A, const Eigen::Matrix3d& B)
 {
   return std::abs(Eigen::AngleAxisd(A * B.transpose()).angle());
@@ -92,10 +101,7 @@ double angleBetween(const Eigen::Matrix3d& A, const Eigen::Matrix3d& B)
 TEST(PoseRefinement, ConvergesFromANearbyPose)
 {
   const Scene s = makeScene();
-  RigidPose start;
-  start.R =
-      Eigen::AngleAxisd(2 * kDeg, Eigen::Vector3d(1, 2, 3).normalized()) * s.truth.R;
-  start.t = s.truth.t + Eigen::Vector3d(0.1, -0.08, 0.05);
+  const RigidPose start = offset(s.truth, Eigen::Vector3d(0.1, -0.08, 0.05));
   const RigidPose refined = refinePose(s.target, s.samples, start, 10);
   EXPECT_LT(angleBetween(refined.R, s.truth.R), 0.05 * kDeg);
   EXPECT_LT((refined.t - s.truth.t).norm(), 0.005);
@@ -130,4 +136,24 @@ TEST(PoseRefinement, TooFewMatchesKeepTheStart)
   // Far from the target (no sample within the radius): nothing to climb.
   start.t.x() += 50.0;
   EXPECT_TRUE(refinePose(s.target, s.samples, start, 10).t.isApprox(start.t));
+}
+
+TEST(PoseRefinement, FirstStepAgainstAWiderIndexReachesAFarStart)
+{
+  // A start 0.6 m off across both walls (twice the radius 0.3): only the floor's
+  // samples have a target point within the radius, so the steps pin height, roll and
+  // pitch and leave the walls apart. One step against the same target indexed at
+  // 0.8 m reaches the walls and starts the climb in the truth's basin.
+  const Scene s = makeScene();
+  const RigidPose start = offset(s.truth, Eigen::Vector3d(0.45, -0.4, 0.0));
+  Eigen::Matrix3Xd points, normals;
+  corner(0.05, points, normals);
+  const PointIndex reach(points, 0.8, normals);
+  const RigidPose near =
+      refinePoseWithin(s.target, s.samples, start, 10, 10 * kDeg, 2.0);
+  EXPECT_GT((near.t - s.truth.t).norm(), 0.3);
+  const RigidPose reached =
+      refinePoseWithin(s.target, s.samples, start, 10, 10 * kDeg, 2.0, &reach);
+  EXPECT_LT(angleBetween(reached.R, s.truth.R), 0.05 * kDeg);
+  EXPECT_LT((reached.t - s.truth.t).norm(), 0.005);
 }

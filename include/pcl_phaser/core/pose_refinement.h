@@ -33,9 +33,16 @@ RigidPose refinePose(const PointIndex& target, const VerificationSamples& sample
 
 /** \brief refinePose within a trust region: \a start as soon as a step turns the pose
  *  by more than \a max_angle (radians) or moves the sensor by more than \a max_shift
- *  (meters) from it (a climb that far left the basin it started in). */
+ *  (meters) from it (a climb that far left the basin it started in).
+ *  \param[in] reach null, or the same target indexed at a larger radius: then one step
+ *  against it comes first and re-centers the climb. It reaches samples that a start
+ *  about that radius off puts beyond \a target's radius, so the \a iterations steps
+ *  against \a target start in the basin of the pose the start approximates; the trust
+ *  region is then around the pose it reached, which is returned if a later step leaves
+ *  it. The reach step is skipped when fewer than six samples match or it leaves the
+ *  region around \a start. */
 RigidPose refinePoseWithin(const PointIndex& target, const VerificationSamples& samples,
                            const RigidPose& start, int iterations, double max_angle,
-                           double max_shift);
+                           double max_shift, const PointIndex* reach = nullptr);
 
 } // namespace pcl::phaser
