@@ -267,9 +267,20 @@ namespace detail {
 
 namespace {
 
+/** \a points indexed at \a radius with their patch normals, one point (the centroid)
+ *  per cube of radius / kIndexThinning: distances move by a few centimeters, while a
+ *  cell near the sensor held thousands of points. */
+PointIndex thinnedIndex(const Eigen::Matrix3Xd& points, const SurfacePatches& patches,
+                        double radius)
+{
+  const Eigen::Matrix3Xd thinned = voxelCentroids(points, radius / kIndexThinning);
+  return PointIndex(thinned, radius, patchNormalsAt(patches, thinned));
+}
+
 /** The target's surface patches and what derives from them: the orientation histogram,
- *  the thickness, the verification index and, about sensor origins, the evenly spaced
- *  samples of the reverse free-space test with their weights (one thread). */
+ *  the thickness, the verification index and, about sensor origins, the polish's reach
+ *  index and the evenly spaced samples of the reverse free-space test with their
+ *  weights (one thread). */
 void addSurfaceModel(TargetModel& model, const Eigen::Matrix3Xd& points,
                      double coarse_voxel)
 {
@@ -279,17 +290,11 @@ void addSurfaceModel(TargetModel& model, const Eigen::Matrix3Xd& points,
   if (params.orientation_candidates > 0 && params.sensor_centered)
     model.orientation = orientationSpectrum(patches, params.orientation_bandwidth, 1);
   model.thickness = patches.thickness;
-  // One point (the centroid) per kIndexThinning-th of the radius: distances move by a
-  // few centimeters, while a cell near the sensor held thousands of points.
   const double radius = kVerificationVoxels * coarse_voxel;
-  const Eigen::Matrix3Xd thinned = voxelCentroids(points, radius / kIndexThinning);
-  model.index = PointIndex(thinned, radius, patchNormalsAt(patches, thinned));
+  model.index = thinnedIndex(points, patches, radius);
   if (params.sensor_centered) {
-    const double reach = kPolishReachVoxels * coarse_voxel;
-    const Eigen::Matrix3Xd reach_points =
-        voxelCentroids(points, reach / kIndexThinning);
     model.reach_index =
-        PointIndex(reach_points, reach, patchNormalsAt(patches, reach_points));
+        thinnedIndex(points, patches, kPolishReachVoxels * coarse_voxel);
     model.samples = verificationSamples(points, radius);
     model.sample_weights = orientationWeights(patches, model.samples);
   }

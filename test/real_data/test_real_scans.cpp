@@ -24,6 +24,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -65,6 +66,23 @@ Cloud::Ptr alignSeenFrom(const Cloud& seen, const Cloud::Ptr& scan,
   Cloud aligned;
   phaser.align(aligned);
   return source;
+}
+
+/** The azimuth sector of \a scan about \a center (radians), \a half_width wide to
+ *  each side (a wedge of the overlap sweep), seen from the pose T whose top three rows
+ *  are \a rows (row-major) and registered against \a scan by \a phaser; returns T. */
+Eigen::Matrix4d alignSectorSeenFrom(const Cloud::Ptr& scan, double center,
+                                    double half_width,
+                                    const std::array<double, 12>& rows,
+                                    pcl::PhaserRegistration<PointT, PointT>& phaser)
+{
+  Cloud sector = *scan;
+  pcl::phaser::bench::keepSector(sector, center, half_width);
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  for (int k = 0; k < 12; ++k)
+    T(k / 4, k % 4) = rows[static_cast<std::size_t>(k)];
+  alignSeenFrom(sector, scan, T, phaser);
+  return T;
 }
 
 /** \a scan perturbed by \a condition, seen from a random pose T (translation up to
@@ -371,15 +389,13 @@ TEST(RealScans, HalfViewFindsItsRotationAmongTheSpareOrientationPeaks)
   // orientation peaks become hypotheses too; one of them is right, and it wins.
   const std::string relative = "lidar/hdl32_fastgicp/251370668.pcd";
   PCL_PHASER_REQUIRE_DATA(relative);
-  const Cloud::Ptr scan = load(relative);
-  Cloud half = *scan;
-  pcl::phaser::bench::keepSector(half, 1.698374324, 0.5 * M_PI);
-  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
-  T.topRows<3>() << -0.1924567753, -0.3211896341, 0.927252721, 0.9903253856,
-      -0.9585730067, -0.1406753061, -0.2476857869, -1.171964386, 0.2099956676,
-      -0.9365082366, -0.2808097975, -0.9449486051;
   pcl::PhaserRegistration<PointT, PointT> phaser;
-  alignSeenFrom(half, scan, T, phaser);
+  const Eigen::Matrix4d T =
+      alignSectorSeenFrom(load(relative), 1.698374324, 0.5 * M_PI,
+                          {-0.1924567753, -0.3211896341, 0.927252721, 0.9903253856,
+                           -0.9585730067, -0.1406753061, -0.2476857869, -1.171964386,
+                           0.2099956676, -0.9365082366, -0.2808097975, -0.9449486051},
+                          phaser);
   const Eigen::Matrix4d G = phaser.getFinalTransformation().cast<double>();
   const pcl::phaser::PhaserResult& r = phaser.getResult();
   const pcl::phaser::PhaserParameters& p = phaser.getParameters();
@@ -406,15 +422,13 @@ TEST(RealScans, NarrowViewPolishReachesFromACoarseTranslationPeak)
   // index brings that hypothesis to the truth, and it wins.
   const std::string relative = "lidar/kitti_raw_hdl64/0000000000.bin";
   PCL_PHASER_REQUIRE_DATA(relative);
-  const Cloud::Ptr scan = load(relative);
-  Cloud wedge = *scan;
-  pcl::phaser::bench::keepSector(wedge, 0.709854195, 0.1 * M_PI);
-  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
-  T.topRows<3>() << -0.07082444269, -0.8698063192, 0.4882835911, 1.030241581,
-      -0.340663372, -0.4389886067, -0.8314069222, -0.9793265379, 0.9375139281,
-      -0.2252242665, -0.2652200302, -0.4649522409;
   pcl::PhaserRegistration<PointT, PointT> phaser;
-  alignSeenFrom(wedge, scan, T, phaser);
+  const Eigen::Matrix4d T =
+      alignSectorSeenFrom(load(relative), 0.709854195, 0.1 * M_PI,
+                          {-0.07082444269, -0.8698063192, 0.4882835911, 1.030241581,
+                           -0.340663372, -0.4389886067, -0.8314069222, -0.9793265379,
+                           0.9375139281, -0.2252242665, -0.2652200302, -0.4649522409},
+                          phaser);
   const Eigen::Matrix4d G = phaser.getFinalTransformation().cast<double>();
   std::printf("  RRE %.3f deg, RTE %.3f m, converged %d\n", rreDeg(G, T), rte(G, T),
               phaser.hasConverged() ? 1 : 0);
