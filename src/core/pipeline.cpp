@@ -374,17 +374,30 @@ SourceContext sourceContext(const TargetModel& target, const Eigen::Matrix3Xd& p
 {
   const auto t = Clock::now();
   SourceContext s{target, points, channels, p, {}, {}, {}, {}};
-  s.coarse_points =
-      voxelCentroids(points, target.coarse.grid.voxel_size / kIndexThinning);
-  s.samples.points = verificationSamples(points, e.verification_radius);
-  s.patches = surfacePatches(points, kPatchVoxels * target.coarse.grid.voxel_size,
-                             Eigen::Vector3d::Zero());
+  const double coarse_voxel = target.coarse.grid.voxel_size;
+  // Four independent passes over the points as one-thread tasks, the longest first
+  // (each gives the same result on any thread count; in turn they left the other
+  // threads idle).
+  runTasks(4, p.num_threads, [&](int part) {
+    switch (part) {
+    case 0:
+      s.patches =
+          surfacePatches(points, kPatchVoxels * coarse_voxel, Eigen::Vector3d::Zero());
+      break;
+    case 1:
+      s.samples.points = verificationSamples(points, e.verification_radius);
+      break;
+    case 2:
+      if (p.sensor_centered)
+        s.free_space =
+            freeSpace(points, kFreeSpaceBandwidth, kFreeSpaceMargin * coarse_voxel, 1);
+      break;
+    default:
+      s.coarse_points = voxelCentroids(points, coarse_voxel / kIndexThinning);
+    }
+  });
   s.samples.weights = orientationWeights(s.patches, s.samples.points);
   s.samples.normals = patchNormalsAt(s.patches, s.samples.points);
-  if (p.sensor_centered)
-    s.free_space =
-        freeSpace(points, kFreeSpaceBandwidth,
-                  kFreeSpaceMargin * target.coarse.grid.voxel_size, p.num_threads);
   e.verification_ms += msSince(t);
   return s;
 }

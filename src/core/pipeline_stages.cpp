@@ -186,6 +186,7 @@ void translateHypotheses(const SourceContext& s, PhaserEstimate& e,
   single.num_threads = 1;
   std::vector<PhaserEstimate> times(n);
   std::vector<Pose> poses(n);
+  const bool polished = canVerify(s);
   const auto start = Clock::now();
   runTasks(static_cast<int>(n), s.p.num_threads, [&](int k) {
     RotationHypothesis& h = e.hypotheses[first + static_cast<std::size_t>(k)];
@@ -196,12 +197,9 @@ void translateHypotheses(const SourceContext& s, PhaserEstimate& e,
     pose.R = h.rotation;
     pose.t = shift.shift;
     pose.v = verify(s, pose.R, pose.t, times[k], 1);
-  });
-  if (canVerify(s))
-    runTasks(static_cast<int>(n), s.p.num_threads, [&](int k) {
-      Pose& pose = poses[static_cast<std::size_t>(k)];
+    if (polished)
       pose = polish(s, pose, times[k], 1);
-    });
+  });
   v.resize(first + n);
   for (std::size_t k = 0; k < n; ++k) {
     e.hypotheses[first + k].rotation = poses[k].R;
