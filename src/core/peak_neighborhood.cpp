@@ -2,6 +2,8 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  */
+#include "parallel.h"
+
 #include <pcl_phaser/core/error.h>
 #include <pcl_phaser/core/peak_neighborhood.h>
 #include <pcl_phaser/core/so3_grid.h>
@@ -71,52 +73,53 @@ std::vector<PeakCandidate> upperLocalMaxima(const So3CorrelationGrid& grid, int 
   std::vector<double> row_lo(static_cast<std::size_t>(N)), row_hi(row_lo.size());
   std::vector<std::vector<PeakCandidate>> rows(static_cast<std::size_t>(N));
   double floor = 0.0;
-#pragma omp parallel num_threads(threads) if (threads > 1)
+  detail::parallelFor(
+      N, 4, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+        for (std::ptrdiff_t j = first; j < last; ++j) {
+          // Four independent running extremes (exact in any order): one chain would
+          // wait on each comparison.
+          constexpr double inf = std::numeric_limits<double>::infinity();
+          double lo[4] = {inf, inf, inf, inf}, hi[4] = {-inf, -inf, -inf, -inf};
+          for (int a = 0; a < N; ++a)
+            for (int c = 0; c < N; ++c) {
+              const double v = grid(j, a, c);
+              lo[c & 3] = std::min(lo[c & 3], v);
+              hi[c & 3] = std::max(hi[c & 3], v);
+            }
+          row_lo[j] = std::min(std::min(lo[0], lo[1]), std::min(lo[2], lo[3]));
+          row_hi[j] = std::max(std::max(hi[0], hi[1]), std::max(hi[2], hi[3]));
+        }
+      });
   {
-#pragma omp for schedule(dynamic, 4)
-    for (int j = 0; j < N; ++j) {
-      // Four independent running extremes (exact in any order): one chain would wait
-      // on each comparison.
-      constexpr double inf = std::numeric_limits<double>::infinity();
-      double lo[4] = {inf, inf, inf, inf}, hi[4] = {-inf, -inf, -inf, -inf};
-      for (int a = 0; a < N; ++a)
-        for (int c = 0; c < N; ++c) {
-          const double v = grid(j, a, c);
-          lo[c & 3] = std::min(lo[c & 3], v);
-          hi[c & 3] = std::max(hi[c & 3], v);
-        }
-      row_lo[j] = std::min(std::min(lo[0], lo[1]), std::min(lo[2], lo[3]));
-      row_hi[j] = std::max(std::max(hi[0], hi[1]), std::max(hi[2], hi[3]));
-    }
-#pragma omp single
-    {
-      const double lo = *std::min_element(row_lo.begin(), row_lo.end());
-      const double hi = *std::max_element(row_hi.begin(), row_hi.end());
-      floor = lo + 0.5 * (hi - lo);
-    }
-#pragma omp for schedule(dynamic, 4)
-    for (int j = 0; j < N; ++j)
-      for (int a = 0; a < N; ++a) {
-        for (int c = 0; c < N; ++c) {
-          const double v = grid(j, a, c);
-          if (v < floor)
-            continue;
-          // The neighbors along c first: in the same row, and on a smooth grid
-          // usually one of them is higher already.
-          const double left = c > 0 ? grid(j, a, c - 1) : valueAt(grid, j, a, c - 1);
-          const double right =
-              c + 1 < N ? grid(j, a, c + 1) : valueAt(grid, j, a, c + 1);
-          bool is_max = !(left > v) && !(right > v);
-          for (int dj = -1; dj <= 1 && is_max; ++dj)
-            for (int da = -1; da <= 1 && is_max; ++da)
-              for (int dc = -1; dc <= 1 && is_max; ++dc)
-                if ((dj || da || dc) && valueAt(grid, j + dj, a + da, c + dc) > v)
-                  is_max = false;
-          if (is_max)
-            rows[j].push_back({v, (static_cast<std::size_t>(j) * N + a) * N + c});
-        }
-      }
+    const double lo = *std::min_element(row_lo.begin(), row_lo.end());
+    const double hi = *std::max_element(row_hi.begin(), row_hi.end());
+    floor = lo + 0.5 * (hi - lo);
   }
+  detail::parallelFor(
+      N, 4, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+        for (int j = static_cast<int>(first); j < last; ++j)
+          for (int a = 0; a < N; ++a) {
+            for (int c = 0; c < N; ++c) {
+              const double v = grid(j, a, c);
+              if (v < floor)
+                continue;
+              // The neighbors along c first: in the same row, and on a smooth grid
+              // usually one of them is higher already.
+              const double left =
+                  c > 0 ? grid(j, a, c - 1) : valueAt(grid, j, a, c - 1);
+              const double right =
+                  c + 1 < N ? grid(j, a, c + 1) : valueAt(grid, j, a, c + 1);
+              bool is_max = !(left > v) && !(right > v);
+              for (int dj = -1; dj <= 1 && is_max; ++dj)
+                for (int da = -1; da <= 1 && is_max; ++da)
+                  for (int dc = -1; dc <= 1 && is_max; ++dc)
+                    if ((dj || da || dc) && valueAt(grid, j + dj, a + da, c + dc) > v)
+                      is_max = false;
+              if (is_max)
+                rows[j].push_back({v, (static_cast<std::size_t>(j) * N + a) * N + c});
+            }
+          }
+      });
   std::vector<PeakCandidate> maxima;
   for (const std::vector<PeakCandidate>& row : rows)
     maxima.insert(maxima.end(), row.begin(), row.end());

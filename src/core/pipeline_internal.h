@@ -6,6 +6,8 @@
 
 // Internal to the engine (not installed): the target model, the state of one estimate
 // and the stages pipeline.cpp and pipeline_stages.cpp share.
+#include "parallel.h"
+
 #include <pcl_phaser/core/cloud_signals.h>
 #include <pcl_phaser/core/error.h>
 #include <pcl_phaser/core/peak_neighborhood.h>
@@ -200,25 +202,17 @@ struct SourceContext {
   Eigen::Matrix3Xd coarse_points;
 };
 
-/** \a task(k) for k = 0 .. count - 1 as independent one-thread tasks in one parallel
- *  region (dynamic schedule: a thread the scheduler parks delays only its own task);
- *  the first exception is rethrown after the region. */
+/** \a task(k) for k = 0 .. count - 1 as independent one-thread tasks (parallelFor, one
+ *  task per chunk: a thread the scheduler parks delays only its own task); the first
+ *  exception is rethrown when the others have ended. */
 template <typename Task>
 void runTasks(int count, int num_threads, const Task& task)
 {
-  std::vector<std::exception_ptr> failed(static_cast<std::size_t>(std::max(count, 0)));
-#pragma omp parallel for num_threads(std::max(1, std::min(num_threads, count)))        \
-    schedule(dynamic, 1)
-  for (int k = 0; k < count; ++k) {
-    try {
-      task(k);
-    } catch (...) {
-      failed[static_cast<std::size_t>(k)] = std::current_exception();
-    }
-  }
-  for (const std::exception_ptr& f : failed)
-    if (f)
-      std::rethrow_exception(f);
+  parallelFor(count, 1, std::min(num_threads, count),
+              [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+                for (std::ptrdiff_t k = first; k < last; ++k)
+                  task(static_cast<int>(k));
+              });
 }
 
 double msSince(Clock::time_point start);

@@ -4,6 +4,7 @@
  */
 #include "fftw_support.h"
 #include "instance_cache.h"
+#include "parallel.h"
 
 #include <pcl_phaser/core/error.h>
 #include <pcl_phaser/core/so3_correlation.h>
@@ -167,12 +168,11 @@ struct WignerTables {
 };
 
 /** Zeroes what the Wigner stage does not write: orders |m'| >= B (rows p in [B, N-B])
- *  and m >= B (columns q in [B, Bo]), Nyquist included. A work-sharing loop: call it
- *  from inside a parallel region. */
-void zeroUnwrittenOrders(const SliceLayout& g)
+ *  and m >= B (columns q in [B, Bo]), Nyquist included, in beta slices [first, last).
+ */
+void zeroUnwrittenOrders(const SliceLayout& g, int first, int last)
 {
-#pragma omp for schedule(dynamic, 4)
-  for (int s = 0; s < g.rows; ++s)
+  for (int s = first; s < last; ++s)
     for (int p = 0; p < g.N; ++p) {
       Complex* row = g.T + s * g.slice + p * g.nh;
       const bool unused_row = p >= g.B && p <= g.N - g.B;
@@ -217,12 +217,10 @@ void wignerOrder(const SphericalSpectrum& target, const SphericalSpectrum& sourc
   }
 }
 
-/** One in-place N x N c2r FFT per beta slice. A work-sharing loop: call it from inside
- *  a parallel region. */
-void inverseSlices(const SliceLayout& g, fftw_plan slice_c2r)
+/** One in-place N x N c2r FFT per beta slice in [first, last). */
+void inverseSlices(const SliceLayout& g, fftw_plan slice_c2r, int first, int last)
 {
-#pragma omp for schedule(dynamic, 1)
-  for (int s = 0; s < g.rows; ++s) {
+  for (int s = first; s < last; ++s) {
     fftw_complex* in = reinterpret_cast<fftw_complex*>(g.T + s * g.slice);
     fftw_execute_dft_c2r(slice_c2r, in, reinterpret_cast<double*>(in));
   }
@@ -331,15 +329,23 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
 
   const WignerTables tables{*steps_, log_factorials_, cos_beta_, log_cos_half_,
                             log_sin_half_};
-#pragma omp parallel num_threads(num_threads) if (num_threads > 1)
-  {
-    zeroUnwrittenOrders(layout);
-    WignerScratch w(layout.J, B);
-#pragma omp for schedule(dynamic, 1)
-    for (int m = 0; m < B; ++m)
-      wignerOrder(target, source, m, tables, layout, w);
-    inverseSlices(layout, plan_->slice_c2r.get());
-  }
+  // Zeroing and the Wigner stage write disjoint entries (orders below B are the
+  // Wigner stage's), so they share one loop; the slices' FFTs need both.
+  detail::parallelFor(std::max(rows, B), 1, num_threads,
+                      [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+                        WignerScratch w(layout.J, B);
+                        for (int k = static_cast<int>(first); k < last; ++k) {
+                          if (k < rows)
+                            zeroUnwrittenOrders(layout, k, k + 1);
+                          if (k < B)
+                            wignerOrder(target, source, k, tables, layout, w);
+                        }
+                      });
+  detail::parallelFor(rows, 1, num_threads,
+                      [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+                        inverseSlices(layout, plan_->slice_c2r.get(),
+                                      static_cast<int>(first), static_cast<int>(last));
+                      });
   return grid;
 }
 
@@ -382,36 +388,35 @@ evaluateCorrelations(const std::vector<SpectrumPair>& pairs,
   const std::size_t PK = static_cast<std::size_t>(P) * K;
   std::vector<double> partial(static_cast<std::size_t>(B) * PK, 0.0);
 
-#pragma omp parallel num_threads(std::max(1, num_threads))
-  {
-    std::vector<double> d0(K), d1(K), d2(K), acc_re(PK), acc_im(PK);
-    std::vector<Complex> sum_mp(PK), c(static_cast<std::size_t>(P) * B);
-#pragma omp for schedule(dynamic, 1)
-    for (int m = 0; m < B; ++m) {
-      std::fill(sum_mp.begin(), sum_mp.end(), Complex(0.0));
-      for (int mp = -(B - 1); mp < B; ++mp) {
-        const int L = std::max(std::abs(mp), m);
-        const WignerStart start = wignerStart(mp, m, lf);
-        for (int k = 0; k < K; ++k)
-          d0[k] = start.value(lc[k], ls[k]);
-        for (int q = 0; q < P; ++q)
-          for (int l = L; l < B; ++l)
-            c[static_cast<std::size_t>(q) * B + l] =
-                std::conj(coefficient(*pairs[q].target, l, mp)) *
-                (*pairs[q].source)(l, m);
-        evaluateAccumulate(*steps, L, B, K, P, mp, m, cb.data(),
-                           reinterpret_cast<const double*>(c.data()), d0.data(),
-                           d1.data(), d2.data(), acc_re.data(), acc_im.data());
-        const Complex* turn = &turn_table[static_cast<std::size_t>(mp + B - 1) * K];
-        for (std::size_t i = 0; i < PK; ++i)
-          sum_mp[i] += turn[i % K] * Complex(acc_re[i], acc_im[i]);
-      }
-      const double eps = (m == 0) ? 1.0 : 2.0;
-      for (std::size_t i = 0; i < PK; ++i)
-        partial[static_cast<std::size_t>(m) * PK + i] =
-            eps * (std::polar(1.0, -m * euler[i % K].gamma) * sum_mp[i]).real();
-    }
-  }
+  detail::parallelFor(
+      B, 1, num_threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+        std::vector<double> d0(K), d1(K), d2(K), acc_re(PK), acc_im(PK);
+        std::vector<Complex> sum_mp(PK), c(static_cast<std::size_t>(P) * B);
+        for (int m = static_cast<int>(first); m < last; ++m) {
+          std::fill(sum_mp.begin(), sum_mp.end(), Complex(0.0));
+          for (int mp = -(B - 1); mp < B; ++mp) {
+            const int L = std::max(std::abs(mp), m);
+            const WignerStart start = wignerStart(mp, m, lf);
+            for (int k = 0; k < K; ++k)
+              d0[k] = start.value(lc[k], ls[k]);
+            for (int q = 0; q < P; ++q)
+              for (int l = L; l < B; ++l)
+                c[static_cast<std::size_t>(q) * B + l] =
+                    std::conj(coefficient(*pairs[q].target, l, mp)) *
+                    (*pairs[q].source)(l, m);
+            evaluateAccumulate(*steps, L, B, K, P, mp, m, cb.data(),
+                               reinterpret_cast<const double*>(c.data()), d0.data(),
+                               d1.data(), d2.data(), acc_re.data(), acc_im.data());
+            const Complex* turn = &turn_table[static_cast<std::size_t>(mp + B - 1) * K];
+            for (std::size_t i = 0; i < PK; ++i)
+              sum_mp[i] += turn[i % K] * Complex(acc_re[i], acc_im[i]);
+          }
+          const double eps = (m == 0) ? 1.0 : 2.0;
+          for (std::size_t i = 0; i < PK; ++i)
+            partial[static_cast<std::size_t>(m) * PK + i] =
+                eps * (std::polar(1.0, -m * euler[i % K].gamma) * sum_mp[i]).real();
+        }
+      });
   std::vector<std::vector<double>> value(P, std::vector<double>(K, 0.0));
   for (int m = 0; m < B; ++m)
     for (int q = 0; q < P; ++q)

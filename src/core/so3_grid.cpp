@@ -3,6 +3,7 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  */
 #include "fftw_support.h"
+#include "parallel.h"
 
 #include <pcl_phaser/core/so3_correlation.h>
 #include <pcl_phaser/core/so3_grid.h>
@@ -92,16 +93,19 @@ So3GridIndex So3CorrelationGrid::argmax(int num_threads) const
                                  -std::numeric_limits<double>::infinity());
   // Grids of fewer than 128^3 samples (Bo < 64) are searched by the calling thread.
   const int threads = N < 128 ? 1 : std::max(1, num_threads);
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 4) if (threads > 1)
-  for (int j = 0; j < rows; ++j)
-    for (int a = 0; a < N; ++a) {
-      const double* row = data_ + (static_cast<std::size_t>(j) * N + a) * row_stride_;
-      for (int c = 0; c < N; ++c)
-        if (row[c] > best_value[j]) {
-          best_value[j] = row[c];
-          best[j] = {j, a, c};
-        }
-    }
+  detail::parallelFor(
+      rows, 4, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+        for (int j = static_cast<int>(first); j < last; ++j)
+          for (int a = 0; a < N; ++a) {
+            const double* row =
+                data_ + (static_cast<std::size_t>(j) * N + a) * row_stride_;
+            for (int c = 0; c < N; ++c)
+              if (row[c] > best_value[j]) {
+                best_value[j] = row[c];
+                best[j] = {j, a, c};
+              }
+          }
+      });
   std::size_t winner = 0;
   for (std::size_t j = 1; j < best.size(); ++j)
     if (best_value[j] > best_value[winner])

@@ -3,6 +3,7 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  */
 #include "fftw_support.h"
+#include "parallel.h"
 #include "spatial_fft.h"
 #include "spatial_grid_support.h"
 
@@ -14,7 +15,6 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <omp.h>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -56,22 +56,18 @@ struct Splat {
   double value;
 };
 
-/** Footprint of every point i in [0, count) into \a all, \a inside[i] = 1 when its
+/** Footprint of every point i in [first, last) into \a all, \a inside[i] = 1 when its
  *  continuous voxel coordinate u (voxel centers at integers) lies in [-1, n) on every
- *  axis and the point and value are finite (else 0). A pure function of each point, so
- *  the loop is an orphaned worksharing loop: split over the enclosing parallel region's
- *  threads, or run whole when called outside one. */
+ *  axis and the point and value are finite (else 0). A pure function of each point. */
 void pointFootprints(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
                      const Eigen::VectorXd* values, std::vector<Splat>& all,
-                     std::vector<char>& inside)
+                     std::vector<char>& inside, Eigen::Index first, Eigen::Index last)
 {
-  const Eigen::Index count = points.cols();
   const Eigen::Array3d upper = grid.dims.cast<double>().array();
   // The range test is done in double so far or negative points are dropped before any
   // integer conversion (the original cast -1 to unsigned and wrote such points into
   // valid voxels).
-#pragma omp for schedule(dynamic, 1024)
-  for (Eigen::Index i = 0; i < count; ++i) {
+  for (Eigen::Index i = first; i < last; ++i) {
     const double value = values ? (*values)[i] : 1.0;
     const Eigen::Array3d u =
         (points.col(i) - grid.origin).array() / grid.voxel_size - 0.5;
@@ -179,22 +175,22 @@ SpatialVolume voxelizeImpl(const SpatialGrid& grid, const Eigen::Matrix3Xd& poin
   SpatialRealArray weighted;         // summed weight * value S, only with values
   if (values)
     weighted.resize(grid.size());
-    // One parallel region: footprints (per point), the counting sort (one thread;
-    // nothing is allocated inside the region), then the slabs. Slab x is zeroed and
-    // written by iteration x only and sums its points in a fixed order, so the result
-    // does not depend on the thread count (no racy += into shared voxels). Splats with
-    // lower x index x-1 and x: buckets x and x+1 of the counting sort.
-#pragma omp parallel num_threads(threads)
-  {
-    pointFootprints(grid, points, values, all, inside);
-#pragma omp single
-    sortBySlab(all, inside, sorted, slab_start);
-#pragma omp for schedule(dynamic, 4)
-    for (int x = 0; x < nx; ++x)
-      accumulateSlab(grid, x, sorted.data() + slab_start[x],
-                     sorted.data() + slab_start[x + 2], values != nullptr, saturation,
-                     volume.values, weighted);
-  }
+  // Footprints (per point), the counting sort (one thread), then the slabs. Slab x is
+  // zeroed and written by chunk x only and sums its points in a fixed order, so the
+  // result does not depend on the thread count (no racy += into shared voxels). Splats
+  // with lower x index x-1 and x: buckets x and x+1 of the counting sort.
+  detail::parallelFor(points.cols(), 1024, threads,
+                      [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+                        pointFootprints(grid, points, values, all, inside, first, last);
+                      });
+  sortBySlab(all, inside, sorted, slab_start);
+  detail::parallelFor(
+      nx, 4, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+        for (std::ptrdiff_t x = first; x < last; ++x)
+          accumulateSlab(grid, static_cast<int>(x), sorted.data() + slab_start[x],
+                         sorted.data() + slab_start[x + 2], values != nullptr,
+                         saturation, volume.values, weighted);
+      });
   return volume;
 }
 
@@ -323,7 +319,7 @@ SpatialVolume correlateInto(const SpatialSpectrum& target,
 
   const double scale = 1.0 / static_cast<double>(target.grid.size());
   out.resize(m);
-  // The product of each run is formed inside the inverse transform's parallel region,
+  // The product of each run is formed inside the inverse transform's loop over rows,
   // just before the run is transformed (element-wise, so any split gives the same
   // result).
   const std::complex<double>* F = target.coefficients.data();

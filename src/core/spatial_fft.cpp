@@ -4,6 +4,7 @@
  */
 #include "fftw_support.h"
 #include "instance_cache.h"
+#include "parallel.h"
 #include "spatial_fft.h"
 
 #include <algorithm>
@@ -11,7 +12,6 @@
 #include <cstddef>
 #include <memory>
 #include <mutex>
-#include <omp.h>
 #include <stdexcept>
 
 namespace pcl::phaser {
@@ -101,9 +101,8 @@ std::size_t bufferStride(std::size_t size)
   return (size + 7) / 8 * 8;
 }
 
-/** One compact row buffer of \a size per thread when the plans gather rows, else
- *  none; allocated before the parallel region (an allocation failure there would
- *  terminate). */
+/** One compact row buffer of \a size per thread (parallelFor's slots) when the plans
+ *  gather rows, else none; allocated before the chunks run. */
 FftwBuffer<fftw_complex> rowBuffers(const Fft3dPlans& plans, std::size_t size,
                                     int num_threads)
 {
@@ -113,14 +112,14 @@ FftwBuffer<fftw_complex> rowBuffers(const Fft3dPlans& plans, std::size_t size,
              : FftwBuffer<fftw_complex>();
 }
 
-/** The calling thread's buffer of \a size in \a buffers (null when there are none). */
+/** The buffer of \a size of thread \a slot (parallelFor) in \a buffers (null when
+ *  there are none). */
 std::complex<double>* rowBuffer(const FftwBuffer<fftw_complex>& buffers,
-                                std::size_t size)
+                                std::size_t size, int slot)
 {
-  return buffers
-             ? reinterpret_cast<std::complex<double>*>(buffers.get()) +
-                   bufferStride(size) * static_cast<std::size_t>(omp_get_thread_num())
-             : nullptr;
+  return buffers ? reinterpret_cast<std::complex<double>*>(buffers.get()) +
+                       bufferStride(size) * static_cast<std::size_t>(slot)
+                 : nullptr;
 }
 
 /** The 1-D transforms along x of row y (its nz/2+1 = \a row coefficients at every x)
@@ -158,22 +157,21 @@ void forwardFft3d(const Eigen::Vector3i& dims, const double* in,
   const int nx = dims.x(), ny = dims.y();
   const std::size_t row = plans->slab_complex / ny;
   const auto buffers = rowBuffers(*plans, nx * row, num_threads);
-  // One parallel region for both passes (the implicit barrier of the first loop
-  // separates them): one team start per transform, not two.
-#pragma omp parallel num_threads(num_threads)
-  {
-#pragma omp for schedule(dynamic, 4)
-    for (int x = 0; x < nx; ++x) {
+  parallelFor(nx, 4, num_threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+    for (std::ptrdiff_t x = first; x < last; ++x) {
       // Out-of-place 2-D r2c preserves its input, so casting away const is safe.
       double* slab = const_cast<double*>(in) + x * plans->slab_real;
       fftw_execute_dft_r2c(plans->slab_forward[plans->slabIndex(slab)].get(), slab,
                            asFftw(out + x * plans->slab_complex));
     }
-    std::complex<double>* buffer = rowBuffer(buffers, nx * row);
-#pragma omp for schedule(dynamic, 4)
-    for (int y = 0; y < ny; ++y)
-      transformRow(*plans, plans->row_forward.get(), nx, row, y, out, buffer);
-  }
+  });
+  parallelFor(ny, 4, num_threads,
+              [&](std::ptrdiff_t first, std::ptrdiff_t last, int slot) {
+                std::complex<double>* buffer = rowBuffer(buffers, nx * row, slot);
+                for (std::ptrdiff_t y = first; y < last; ++y)
+                  transformRow(*plans, plans->row_forward.get(), nx, row,
+                               static_cast<int>(y), out, buffer);
+              });
 }
 
 void inverseFft3d(
@@ -184,21 +182,22 @@ void inverseFft3d(
   const int nx = dims.x(), ny = dims.y();
   const std::size_t row = plans->slab_complex / ny;
   const auto buffers = rowBuffers(*plans, nx * row, num_threads);
-#pragma omp parallel num_threads(num_threads)
-  {
-    std::complex<double>* buffer = rowBuffer(buffers, nx * row);
-#pragma omp for schedule(dynamic, 4)
-    for (int y = 0; y < ny; ++y) {
-      // Row y's 1-D transforms read (x, y) for every x: prepare exactly those runs.
-      transformRow(*plans, plans->row_backward.get(), nx, row, y, in, buffer, prepare);
-    }
-#pragma omp for schedule(dynamic, 4)
-    for (int x = 0; x < nx; ++x) {
+  parallelFor(ny, 4, num_threads,
+              [&](std::ptrdiff_t first, std::ptrdiff_t last, int slot) {
+                std::complex<double>* buffer = rowBuffer(buffers, nx * row, slot);
+                // Row y's 1-D transforms read (x, y) for every x: prepare exactly those
+                // runs.
+                for (std::ptrdiff_t y = first; y < last; ++y)
+                  transformRow(*plans, plans->row_backward.get(), nx, row,
+                               static_cast<int>(y), in, buffer, prepare);
+              });
+  parallelFor(nx, 4, num_threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+    for (std::ptrdiff_t x = first; x < last; ++x) {
       double* slab = out + x * plans->slab_real;
       fftw_execute_dft_c2r(plans->slab_inverse[plans->slabIndex(slab)].get(),
                            asFftw(in + x * plans->slab_complex), slab);
     }
-  }
+  });
 }
 
 } // namespace detail

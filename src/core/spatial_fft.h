@@ -31,8 +31,8 @@ void forwardFft3d(const Eigen::Vector3i& dims, const double* in,
  *  \a in (nx x ny x (nz/2+1)) is destroyed; \a out receives nx x ny x nz reals.
  *  \param[in] prepare if set, called once for every contiguous run [first, first +
  *  count) of \a in (the nz/2+1 coefficients of one (x, y)) just before its transform,
- *  from any thread of the same parallel region; it may rewrite that run only. It lets
- * an element-wise product run inside the transform's region instead of its own. */
+ *  from whichever thread transforms it; it may rewrite that run only. It lets an
+ *  element-wise product run inside the transform's loop instead of its own. */
 void inverseFft3d(
     const Eigen::Vector3i& dims, std::complex<double>* in, double* out, int num_threads,
     const std::function<void(std::size_t first, std::size_t count)>& prepare = {});

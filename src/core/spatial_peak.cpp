@@ -5,6 +5,7 @@
  * The peak of a 3-D correlation: argmax (deterministic for any thread count), sub-voxel
  * refinement per axis, and the Laplacian peak-to-sidelobe score.
  */
+#include "parallel.h"
 #include "spatial_grid_support.h"
 
 #include <pcl_phaser/core/spatial_correlation.h>
@@ -67,14 +68,12 @@ Eigen::Vector3d refineAxes(const SpatialVolume& c, const Eigen::Vector3i& peak,
 }
 
 /** The discrete Laplacian of \a c (c minus the mean of its 6 face neighbors, which wrap
- *  around) into \a lap, one x slab per iteration of an orphaned worksharing loop (split
- *  over the enclosing parallel region's threads). */
-void laplacian(const SpatialVolume& c, SpatialRealArray& lap)
+ *  around) into \a lap, for the x slabs [first, last). */
+void laplacian(const SpatialVolume& c, SpatialRealArray& lap, int first, int last)
 {
   const SpatialGrid& grid = c.grid;
   const int nx = grid.dims.x(), ny = grid.dims.y(), nz = grid.dims.z();
-#pragma omp for schedule(dynamic, 4)
-  for (int x = 0; x < nx; ++x) {
+  for (int x = first; x < last; ++x) {
     const int xm = wrapIndex(x - 1, nx), xp = wrapIndex(x + 1, nx);
     for (int y = 0; y < ny; ++y) {
       const int ym = wrapIndex(y - 1, ny), yp = wrapIndex(y + 1, ny);
@@ -112,12 +111,12 @@ double peakScore(const SpatialVolume& c, const Eigen::Vector3i& peak, int thread
     return true;
   };
   // Per-slab partial sums, added in slab order by one thread: the same result for any
-  // thread count. An orphaned worksharing loop (called inside the region below).
+  // thread count.
   std::vector<double> slab_sum(static_cast<std::size_t>(nx));
   std::vector<std::size_t> slab_count(static_cast<std::size_t>(nx));
-  const auto slab_sums = [&](const SpatialRealArray& lap, double mean, bool squared) {
-#pragma omp for schedule(dynamic, 4)
-    for (int x = 0; x < nx; ++x) {
+  const auto slab_sums = [&](const SpatialRealArray& lap, double mean, bool squared,
+                             int first, int last) {
+    for (int x = first; x < last; ++x) {
       double sum = 0.0;
       std::size_t k = 0;
       const bool x_near =
@@ -145,23 +144,24 @@ double peakScore(const SpatialVolume& c, const Eigen::Vector3i& peak, int thread
     }
     return sum;
   };
-  // The Laplacian volume, computed once, then the two passes,
-  // all in one parallel region (the worksharing loops' barriers order them).
+  // The Laplacian volume, computed once, then the two passes.
   SpatialRealArray lap(grid.size());
+  const auto slabs = [&](const auto& per_slabs) {
+    detail::parallelFor(nx, 4, threads,
+                        [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+                          per_slabs(static_cast<int>(first), static_cast<int>(last));
+                        });
+  };
+  slabs([&](int first, int last) {
+    laplacian(c, lap, first, last);
+    slab_sums(lap, 0.0, false, first, last);
+  });
   std::size_t count = 0;
   double mean = 0.0;
-#pragma omp parallel num_threads(threads)
-  {
-    laplacian(c, lap);
-    slab_sums(lap, 0.0, false);
-#pragma omp single
-    {
-      const double total = add_slabs(count);
-      if (count > 0)
-        mean = total / static_cast<double>(count);
-    }
-    if (count > 0)
-      slab_sums(lap, mean, true);
+  const double total = add_slabs(count);
+  if (count > 0) {
+    mean = total / static_cast<double>(count);
+    slabs([&](int first, int last) { slab_sums(lap, mean, true, first, last); });
   }
   if (count == 0) // the window covers the whole (tiny) grid: nothing to compare with
     return 0.0;
@@ -244,18 +244,20 @@ SpatialCorrelationResult findSpatialPeak(const SpatialVolume& correlation,
   // Argmax per x-slab, then merged in slab order: ties go to the lowest flat index
   // whatever the thread count.
   std::vector<std::size_t> slab_best(static_cast<std::size_t>(nx));
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 4)
-  for (int x = 0; x < nx; ++x) {
-    const std::size_t begin = static_cast<std::size_t>(x) * slab;
-    std::size_t best = begin;
-    double highest = c[begin]; // in a register: no load of c[best] per element
-    for (std::size_t i = begin + 1; i < begin + slab; ++i)
-      if (c[i] > highest) {
-        highest = c[i];
-        best = i;
-      }
-    slab_best[static_cast<std::size_t>(x)] = best;
-  }
+  detail::parallelFor(
+      nx, 4, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+        for (std::ptrdiff_t x = first; x < last; ++x) {
+          const std::size_t begin = static_cast<std::size_t>(x) * slab;
+          std::size_t best = begin;
+          double highest = c[begin]; // in a register: no load of c[best] per element
+          for (std::size_t i = begin + 1; i < begin + slab; ++i)
+            if (c[i] > highest) {
+              highest = c[i];
+              best = i;
+            }
+          slab_best[static_cast<std::size_t>(x)] = best;
+        }
+      });
   std::size_t best = slab_best[0];
   for (std::size_t b : slab_best)
     if (c[b] > c[best])

@@ -4,6 +4,7 @@
  */
 #include "fftw_support.h"
 #include "instance_cache.h"
+#include "parallel.h"
 
 #include <pcl_phaser/core/error.h>
 #include <pcl_phaser/core/legendre.h>
@@ -22,7 +23,7 @@ using Complex = std::complex<double>;
 namespace {
 
 /** Bandwidths below this are transformed by the calling thread (B = 64: about 0.5 ms
- *  of work, less than what a parallel region costs when a worker is parked). */
+ *  of work, less than handing it to a worker costs when the worker is parked). */
 constexpr int kMinParallelBandwidth = 128;
 
 } // namespace
@@ -95,31 +96,31 @@ SphericalSpectrum SphericalHarmonicTransform::forward(const double* samples,
   SphericalSpectrum F = SphericalSpectrum::Zero(B, B);
   const double scale = M_PI / B;
   // Below kMinParallelBandwidth the whole transform (B^3 / 2 multiply-adds) takes less
-  // than a parallel region's start and barrier on a busy machine.
+  // than waking a worker on a busy machine.
   const int threads = B < kMinParallelBandwidth ? 1 : std::max(1, num_threads);
-#pragma omp parallel num_threads(threads) if (threads > 1)
-  {
-    std::vector<Complex> even(B), odd(B);
-#pragma omp for schedule(dynamic, 1)
-    for (int m = 0; m < B; ++m) {
-      // Fold northern and southern rings, weighted, so each degree is one dot product.
-      for (int j = 0; j < B; ++j) {
-        const Complex north = ring[j * nh + m];
-        const Complex south = ring[(n - 1 - j) * nh + m];
-        even[j] = weights_[j] * (north + south);
-        odd[j] = weights_[j] * (north - south);
-      }
-      for (int l = m; l < B; ++l) {
-        const double* p =
-            &legendre_[static_cast<std::size_t>(legendreIndex(l, m, B)) * B];
-        const std::vector<Complex>& folded = ((l + m) % 2 == 0) ? even : odd;
-        Complex acc = 0.0;
-        for (int j = 0; j < B; ++j)
-          acc += p[j] * folded[j];
-        F(l, m) = scale * acc;
-      }
-    }
-  }
+  detail::parallelFor(
+      B, 1, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+        std::vector<Complex> even(B), odd(B);
+        for (int m = static_cast<int>(first); m < last; ++m) {
+          // Fold northern and southern rings, weighted, so each degree is one dot
+          // product.
+          for (int j = 0; j < B; ++j) {
+            const Complex north = ring[j * nh + m];
+            const Complex south = ring[(n - 1 - j) * nh + m];
+            even[j] = weights_[j] * (north + south);
+            odd[j] = weights_[j] * (north - south);
+          }
+          for (int l = m; l < B; ++l) {
+            const double* p =
+                &legendre_[static_cast<std::size_t>(legendreIndex(l, m, B)) * B];
+            const std::vector<Complex>& folded = ((l + m) % 2 == 0) ? even : odd;
+            Complex acc = 0.0;
+            for (int j = 0; j < B; ++j)
+              acc += p[j] * folded[j];
+            F(l, m) = scale * acc;
+          }
+        }
+      });
   return F;
 }
 

@@ -2,6 +2,8 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  */
+#include "parallel.h"
+
 #include <pcl_phaser/core/error.h>
 #include <pcl_phaser/core/spherical_grid.h>
 #include <pcl_phaser/core/spherical_sampling.h>
@@ -13,9 +15,8 @@ namespace pcl::phaser {
 
 namespace {
 
-/** Fewer points than this are binned by the calling thread: a parallel region's start
- *  and barrier cost more than the work (two atan2 per point), and on a busy machine a
- *  parked worker stalls the region. */
+/** Fewer points than this are binned by the calling thread: waking a worker costs more
+ *  than the work (two atan2 per point). */
 constexpr Eigen::Index kMinParallelPoints = 16384;
 
 } // namespace
@@ -29,9 +30,11 @@ std::vector<int> sphereCells(const Eigen::Matrix3Xd& points, int bandwidth,
   const Eigen::Index n = points.cols();
   std::vector<int> cells(static_cast<std::size_t>(n));
   const int threads = n < kMinParallelPoints ? 1 : std::max(1, num_threads);
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1024) if (threads > 1)
-  for (Eigen::Index i = 0; i < n; ++i)
-    cells[i] = cellIndex(points.col(i), bandwidth);
+  detail::parallelFor(
+      n, 1024, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+        for (std::ptrdiff_t i = first; i < last; ++i)
+          cells[static_cast<std::size_t>(i)] = cellIndex(points.col(i), bandwidth);
+      });
   return cells;
 }
 

@@ -2,6 +2,8 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  */
+#include "parallel.h"
+
 #include <pcl_phaser/core/error.h>
 #include <pcl_phaser/core/spherical_sampling.h>
 #include <pcl_phaser/core/verification.h>
@@ -16,9 +18,8 @@ namespace pcl::phaser {
 
 namespace {
 
-/** Fewer samples than this are verified by the calling thread: a parallel region's
- *  start and barrier cost more than the look-ups, and on a busy machine a parked
- *  worker stalls the region. */
+/** Fewer samples than this are verified by the calling thread: waking a worker costs
+ *  more than the look-ups. */
 constexpr Eigen::Index kMinParallelSamples = 8192;
 
 } // namespace
@@ -113,16 +114,18 @@ std::vector<double> sampleCloseness(const PointIndex& target,
   const bool with_normals = s.normals.cols() != 0;
   const double r2 = target.radius() * target.radius();
   const int threads = n < kMinParallelSamples ? 1 : std::max(1, num_threads);
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 256) if (threads > 1)
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Vector3d q = R * s.points.col(i) + t;
-    const double d2 =
-        with_normals
-            ? target.nearestSquaredDistance(q, R * s.normals.col(i), kMinNormalCosine)
-            : target.nearestSquaredDistance(q);
-    if (std::isfinite(d2))
-      closeness[static_cast<std::size_t>(i)] = std::max(1e-12, 1.0 - d2 / r2);
-  }
+  detail::parallelFor(
+      n, 256, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+        for (std::ptrdiff_t i = first; i < last; ++i) {
+          const Eigen::Vector3d q = R * s.points.col(i) + t;
+          const double d2 = with_normals
+                                ? target.nearestSquaredDistance(q, R * s.normals.col(i),
+                                                                kMinNormalCosine)
+                                : target.nearestSquaredDistance(q);
+          if (std::isfinite(d2))
+            closeness[static_cast<std::size_t>(i)] = std::max(1e-12, 1.0 - d2 / r2);
+        }
+      });
   return closeness;
 }
 
