@@ -72,7 +72,6 @@ std::vector<PeakCandidate> upperLocalMaxima(const So3CorrelationGrid& grid, int 
   const int N = grid.size();
   std::vector<double> row_lo(static_cast<std::size_t>(N)), row_hi(row_lo.size());
   std::vector<std::vector<PeakCandidate>> rows(static_cast<std::size_t>(N));
-  double floor = 0.0;
   detail::parallelFor(
       N, 4, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
         for (std::ptrdiff_t j = first; j < last; ++j) {
@@ -90,11 +89,9 @@ std::vector<PeakCandidate> upperLocalMaxima(const So3CorrelationGrid& grid, int 
           row_hi[j] = std::max(std::max(hi[0], hi[1]), std::max(hi[2], hi[3]));
         }
       });
-  {
-    const double lo = *std::min_element(row_lo.begin(), row_lo.end());
-    const double hi = *std::max_element(row_hi.begin(), row_hi.end());
-    floor = lo + 0.5 * (hi - lo);
-  }
+  const double lo = *std::min_element(row_lo.begin(), row_lo.end());
+  const double hi = *std::max_element(row_hi.begin(), row_hi.end());
+  const double floor = lo + 0.5 * (hi - lo);
   detail::parallelFor(
       N, 4, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
         for (int j = static_cast<int>(first); j < last; ++j)

@@ -333,12 +333,13 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
   // Wigner stage's), so they share one loop; the slices' FFTs need both.
   detail::parallelFor(std::max(rows, B), 1, num_threads,
                       [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
-                        WignerScratch w(layout.J, B);
                         for (int k = static_cast<int>(first); k < last; ++k) {
                           if (k < rows)
                             zeroUnwrittenOrders(layout, k, k + 1);
-                          if (k < B)
+                          if (k < B) {
+                            WignerScratch w(layout.J, B);
                             wignerOrder(target, source, k, tables, layout, w);
+                          }
                         }
                       });
   detail::parallelFor(rows, 1, num_threads,

@@ -157,14 +157,11 @@ double peakScore(const SpatialVolume& c, const Eigen::Vector3i& peak, int thread
     slab_sums(lap, 0.0, false, first, last);
   });
   std::size_t count = 0;
-  double mean = 0.0;
   const double total = add_slabs(count);
-  if (count > 0) {
-    mean = total / static_cast<double>(count);
-    slabs([&](int first, int last) { slab_sums(lap, mean, true, first, last); });
-  }
   if (count == 0) // the window covers the whole (tiny) grid: nothing to compare with
     return 0.0;
+  const double mean = total / static_cast<double>(count);
+  slabs([&](int first, int last) { slab_sums(lap, mean, true, first, last); });
   const double deviation = std::sqrt(add_slabs(count) / static_cast<double>(count));
   const double height = lap[grid.flatIndex(peak.x(), peak.y(), peak.z())] - mean;
   if (!(height > 0.0))

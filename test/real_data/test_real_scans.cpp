@@ -85,6 +85,21 @@ Eigen::Matrix4d alignSectorSeenFrom(const Cloud::Ptr& scan, double center,
   return T;
 }
 
+/** The pose \a phaser found against the truth \a T: printed, within 2 deg / 0.3 m, and
+ *  converged. */
+void expectRightAndConverged(pcl::PhaserRegistration<PointT, PointT>& phaser,
+                             const Eigen::Matrix4d& T)
+{
+  const Eigen::Matrix4d G = phaser.getFinalTransformation().cast<double>();
+  std::printf("  RRE %.3f deg, RTE %.3f m, converged %d, chosen hypothesis %d of %zu\n",
+              rreDeg(G, T), rte(G, T), phaser.hasConverged() ? 1 : 0,
+              phaser.getResult().chosen_hypothesis,
+              phaser.getResult().hypotheses.size());
+  EXPECT_LT(rreDeg(G, T), 2.0);
+  EXPECT_LT(rte(G, T), 0.3);
+  EXPECT_TRUE(phaser.hasConverged());
+}
+
 /** \a scan perturbed by \a condition, seen from a random pose T (translation up to
  *  2 m) and registered against \a scan by \a phaser; returns T. */
 Eigen::Matrix4d alignPerturbed(const Cloud::Ptr& scan,
@@ -396,14 +411,9 @@ TEST(RealScans, HalfViewFindsItsRotationAmongTheSpareOrientationPeaks)
                            -0.9585730067, -0.1406753061, -0.2476857869, -1.171964386,
                            0.2099956676, -0.9365082366, -0.2808097975, -0.9449486051},
                           phaser);
-  const Eigen::Matrix4d G = phaser.getFinalTransformation().cast<double>();
+  expectRightAndConverged(phaser, T);
   const pcl::phaser::PhaserResult& r = phaser.getResult();
   const pcl::phaser::PhaserParameters& p = phaser.getParameters();
-  std::printf("  RRE %.3f deg, RTE %.3f m, chosen hypothesis %d of %zu\n", rreDeg(G, T),
-              rte(G, T), r.chosen_hypothesis, r.hypotheses.size());
-  EXPECT_LT(rreDeg(G, T), 2.0);
-  EXPECT_LT(rte(G, T), 0.3);
-  EXPECT_TRUE(phaser.hasConverged());
   // The spare peaks follow the pass-1 hypotheses (ten of them), before the further
   // translation peaks of the pass-1 rotations.
   const int first_spare = p.rotation_candidates + p.orientation_candidates;
@@ -429,12 +439,7 @@ TEST(RealScans, NarrowViewPolishReachesFromACoarseTranslationPeak)
                            -0.340663372, -0.4389886067, -0.8314069222, -0.9793265379,
                            0.9375139281, -0.2252242665, -0.2652200302, -0.4649522409},
                           phaser);
-  const Eigen::Matrix4d G = phaser.getFinalTransformation().cast<double>();
-  std::printf("  RRE %.3f deg, RTE %.3f m, converged %d\n", rreDeg(G, T), rte(G, T),
-              phaser.hasConverged() ? 1 : 0);
-  EXPECT_LT(rreDeg(G, T), 2.0);
-  EXPECT_LT(rte(G, T), 0.3);
-  EXPECT_TRUE(phaser.hasConverged());
+  expectRightAndConverged(phaser, T);
 }
 
 namespace {
