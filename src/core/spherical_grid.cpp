@@ -42,13 +42,33 @@ Eigen::Vector3d sampleDirection(int ring, int column, int bandwidth)
   return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
 }
 
-int cellIndex(const Eigen::Vector3d& p, int bandwidth)
+namespace {
+
+/** The largest error of fastAtan2, in radians, with a margin. */
+constexpr double kFastAtanError = 2e-5;
+
+/** atan(x) for 0 <= x <= 1 within 1e-5 rad (Abramowitz and Stegun 4.4.49). */
+double atanUnit(double x)
 {
-  if (!p.allFinite())
-    return -1;
+  const double x2 = x * x;
+  return x * (0.9998660 + x2 * (-0.3302995 +
+                                x2 * (0.1801410 + x2 * (-0.0851330 + x2 * 0.0208351))));
+}
+
+/** atan2(y, x) within kFastAtanError, for (x, y) not both zero. */
+double fastAtan2(double y, double x)
+{
+  const double ax = std::abs(x), ay = std::abs(y);
+  double a = ay <= ax ? atanUnit(ay / ax) : M_PI_2 - atanUnit(ax / ay);
+  if (x < 0.0)
+    a = M_PI - a;
+  return y < 0.0 ? -a : a;
+}
+
+/** The cell of \a p from the exact angles (two atan2). */
+int exactCellIndex(const Eigen::Vector3d& p, int bandwidth)
+{
   const double rho = std::hypot(p.x(), p.y());
-  if (rho == 0.0 && p.z() == 0.0)
-    return -1;
   const int n = 2 * bandwidth;
   // Cell j spans colatitudes [pi j / 2B, pi (j+1) / 2B): its sample theta_j is the
   // center.
@@ -60,6 +80,32 @@ int cellIndex(const Eigen::Vector3d& p, int bandwidth)
   // Column k is centered on phi_k = pi k / B: round to the nearest sample.
   const int k = static_cast<int>(std::lround(phi * bandwidth / M_PI)) % n;
   return j * n + k;
+}
+
+} // namespace
+
+int cellIndex(const Eigen::Vector3d& p, int bandwidth)
+{
+  if (!p.allFinite())
+    return -1;
+  if (p.x() == 0.0 && p.y() == 0.0 && p.z() == 0.0)
+    return -1;
+  // The angles from a polynomial: the cell is the exact one unless an angle lies
+  // within the polynomial's error of a cell boundary, where the exact angles decide.
+  const double rho2 = p.x() * p.x() + p.y() * p.y();
+  if (!(rho2 > 1e-280 && rho2 < 1e280 && std::abs(p.z()) < 1e140))
+    return exactCellIndex(p, bandwidth);
+  const int n = 2 * bandwidth;
+  const double margin = kFastAtanError * n / M_PI;
+  const double u = fastAtan2(std::sqrt(rho2), p.z()) * n / M_PI;
+  double v = fastAtan2(p.y(), p.x()) * bandwidth / M_PI;
+  if (v < 0.0)
+    v += n;
+  const double j = std::floor(u), k = std::round(v);
+  if (u - j < margin || j + 1.0 - u < margin || std::abs(v - k) > 0.5 - margin ||
+      j >= n)
+    return exactCellIndex(p, bandwidth);
+  return static_cast<int>(j) * n + static_cast<int>(k) % n;
 }
 
 } // namespace pcl::phaser

@@ -14,6 +14,7 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -47,6 +48,48 @@ TEST(SphericalGrid, CellIndexMatchesSampleDirections)
   EXPECT_EQ(cellIndex(Eigen::Vector3d(0, 0, 1), B) / (2 * B), 0);          // north pole
   EXPECT_EQ(cellIndex(Eigen::Vector3d(0, 0, -1), B) / (2 * B), 2 * B - 1); // south pole
   EXPECT_EQ(cellIndex(Eigen::Vector3d(1, -1e-9, 0), B) % (2 * B), 0); // phi wraps to 0
+}
+
+/** The cell from the exact angles, as the grid defines it: ring floor(theta 2B / pi),
+ *  column round(phi B / pi) mod 2B. */
+int exactCell(const Eigen::Vector3d& p, int B)
+{
+  const int n = 2 * B;
+  const double theta = std::atan2(std::hypot(p.x(), p.y()), p.z());
+  double phi = std::atan2(p.y(), p.x());
+  if (phi < 0.0)
+    phi += 2.0 * M_PI;
+  const int j = std::min(n - 1, static_cast<int>(theta * n / M_PI));
+  return j * n + static_cast<int>(std::lround(phi * B / M_PI)) % n;
+}
+
+TEST(SphericalGrid, CellIndexIsTheExactCell)
+{
+  // cellIndex takes its angles from a polynomial away from the cell boundaries: random
+  // directions at any scale, and directions within 1e-9 .. 1e-4 rad of a boundary.
+  std::mt19937 rng(7);
+  std::normal_distribution<double> gauss;
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int B : {8, 32, 64, 128}) {
+    const int n = 2 * B;
+    for (int i = 0; i < 20000; ++i) {
+      const Eigen::Vector3d d(gauss(rng), gauss(rng), gauss(rng));
+      const double scale = std::pow(10.0, 6.0 * unit(rng));
+      ASSERT_EQ(cellIndex(scale * d, B), exactCell(scale * d, B)) << d.transpose();
+      const double offset =
+          std::copysign(std::pow(10.0, -9.0 + 5.0 * std::abs(unit(rng))), unit(rng));
+      const double theta = M_PI * (i % n) / n + offset;
+      const double phi = M_PI * ((i / n) % n + 0.5) / B + offset;
+      const Eigen::Vector3d b(std::sin(theta) * std::cos(phi),
+                              std::sin(theta) * std::sin(phi), std::cos(theta));
+      ASSERT_EQ(cellIndex(b, B), exactCell(b, B)) << b.transpose();
+    }
+  }
+  for (const Eigen::Vector3d& p :
+       {Eigen::Vector3d(1e-300, -1e-300, 1e-300), Eigen::Vector3d(1e300, 1e300, -1e300),
+        Eigen::Vector3d(-1, 0, 0), Eigen::Vector3d(-1, -0.0, 0),
+        Eigen::Vector3d(0, 0, 5)})
+    EXPECT_EQ(cellIndex(p, 64), exactCell(p, 64)) << p.transpose();
 }
 
 TEST(Legendre, ClosedForms)
