@@ -331,7 +331,7 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
                             log_sin_half_};
   // Zeroing and the Wigner stage write disjoint entries (orders below B are the
   // Wigner stage's), so they share one loop; the slices' FFTs need both.
-  detail::parallelFor(std::max(rows, B), 1, num_threads,
+  detail::parallelFor(std::max(rows, B), 4, num_threads,
                       [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
                         for (int k = static_cast<int>(first); k < last; ++k) {
                           if (k < rows)

@@ -17,6 +17,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pcl::phaser {
@@ -60,8 +61,8 @@ struct Splat {
  *  continuous voxel coordinate u (voxel centers at integers) lies in [-1, n) on every
  *  axis and the point and value are finite (else 0). A pure function of each point. */
 void pointFootprints(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
-                     const Eigen::VectorXd* values, std::vector<Splat>& all,
-                     std::vector<char>& inside, Eigen::Index first, Eigen::Index last)
+                     const Eigen::VectorXd* values, Splat* all, char* inside,
+                     Eigen::Index first, Eigen::Index last)
 {
   const Eigen::Array3d upper = grid.dims.cast<double>().array();
   // The range test is done in double so far or negative points are dropped before any
@@ -81,28 +82,56 @@ void pointFootprints(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
   }
 }
 
-/** Counting sort of the footprints in \a all marked \a inside by lower x index (base x
- *  in [-1, nx)) into \a sorted (sized for all of them), stable: each bucket in point
- *  order. \a slab_start (nx + 2 entries) receives the bucket starts: bucket b (lower
- *  index b - 1) is [start[b], start[b + 1]), so slab x visits the points with lower
- *  index x-1 and x, each run in point order. Allocates nothing. */
-void sortBySlab(const std::vector<Splat>& all, const std::vector<char>& inside,
-                std::vector<Splat>& sorted, std::vector<std::size_t>& slab_start)
+/** Points per chunk of the footprints and of the counting sort: fixed, so the chunks
+ *  (and the order of the sort) do not depend on the thread count. */
+constexpr std::size_t kSortChunk = 16384;
+
+/** Bucket of a footprint in the counting sort: its lower x index + 1, in [0, nx]. */
+std::size_t bucketOf(const Splat& s)
 {
-  std::fill(slab_start.begin(), slab_start.end(), 0);
-  for (std::size_t i = 0; i < all.size(); ++i)
-    if (inside[i])
-      ++slab_start[static_cast<std::size_t>(all[i].base.x() + 1) + 1];
-  for (std::size_t i = 1; i < slab_start.size(); ++i)
-    slab_start[i] += slab_start[i - 1];
-  // slab_start[b] is the next free place of bucket b while scattering; it ends at
-  // bucket b's end, the start of bucket b + 1, so a shift by one restores the starts.
-  for (std::size_t i = 0; i < all.size(); ++i)
-    if (inside[i])
-      sorted[slab_start[static_cast<std::size_t>(all[i].base.x() + 1)]++] = all[i];
-  for (std::size_t b = slab_start.size() - 1; b > 0; --b)
-    slab_start[b] = slab_start[b - 1];
-  slab_start[0] = 0;
+  return static_cast<std::size_t>(s.base.x() + 1);
+}
+
+/** Stable counting sort of the footprints in \a all marked \a inside by lower x index
+ *  (base x in [-1, nx)) into \a sorted, in parallel over chunks of kSortChunk points:
+ *  each chunk counts its buckets (\a counts, nx + 1 per chunk), the offsets follow in
+ *  bucket-then-chunk order, and each chunk scatters its points, so every bucket holds
+ *  its points in point order whatever the thread count. \a slab_start (nx + 2 entries)
+ *  receives the bucket starts: bucket b (lower index b - 1) is [start[b], start[b +
+ *  1]), so slab x visits the points with lower index x-1 and x, each run in point
+ *  order. */
+void sortBySlab(const Splat* all, const char* inside, std::size_t count, Splat* sorted,
+                std::vector<std::size_t>& slab_start, int threads)
+{
+  const std::size_t buckets = slab_start.size() - 1;
+  const std::size_t chunks = (count + kSortChunk - 1) / kSortChunk;
+  std::vector<std::size_t> counts(chunks * buckets, 0);
+  // op(i, the chunk's row of counts) for every point i marked inside, chunk by chunk.
+  const auto eachChunk = [&](const auto& op) {
+    detail::parallelFor(static_cast<std::ptrdiff_t>(chunks), 1, threads,
+                        [&](std::ptrdiff_t c, std::ptrdiff_t, int) {
+                          const std::size_t first =
+                              static_cast<std::size_t>(c) * kSortChunk;
+                          const std::size_t last = std::min(count, first + kSortChunk);
+                          std::size_t* row =
+                              counts.data() + static_cast<std::size_t>(c) * buckets;
+                          for (std::size_t i = first; i < last; ++i)
+                            if (inside[i])
+                              op(i, row);
+                        });
+  };
+  eachChunk([&](std::size_t i, std::size_t* row) { ++row[bucketOf(all[i])]; });
+  std::size_t next = 0;
+  for (std::size_t bucket = 0; bucket < buckets; ++bucket) {
+    slab_start[bucket] = next;
+    for (std::size_t c = 0; c < chunks; ++c)
+      next += std::exchange(counts[c * buckets + bucket], next);
+  }
+  slab_start[buckets] = next;
+  // Each row of counts now holds where its chunk's run of each bucket starts.
+  eachChunk([&](std::size_t i, std::size_t* row) {
+    sorted[row[bucketOf(all[i])]++] = all[i];
+  });
 }
 
 /** Slab x of the voxelization: zeroes it, sums the trilinear weights W (into \a out)
@@ -165,8 +194,10 @@ SpatialVolume voxelizeImpl(const SpatialGrid& grid, const Eigen::Matrix3Xd& poin
 
   const int nx = grid.dims.x();
   const std::size_t count = static_cast<std::size_t>(points.cols());
-  std::vector<Splat> all(count), sorted(count);
-  std::vector<char> inside(count);
+  // Left uninitialized: every footprint read is written first (zeroing them was a
+  // single-threaded pass over megabytes).
+  const std::unique_ptr<Splat[]> all(new Splat[count]), sorted(new Splat[count]);
+  const std::unique_ptr<char[]> inside(new char[count]);
   std::vector<std::size_t> slab_start(static_cast<std::size_t>(nx) + 2);
 
   SpatialVolume volume;
@@ -175,20 +206,21 @@ SpatialVolume voxelizeImpl(const SpatialGrid& grid, const Eigen::Matrix3Xd& poin
   SpatialRealArray weighted;         // summed weight * value S, only with values
   if (values)
     weighted.resize(grid.size());
-  // Footprints (per point), the counting sort (one thread), then the slabs. Slab x is
+  // Footprints (per point), the counting sort (per chunk), then the slabs. Slab x is
   // zeroed and written by chunk x only and sums its points in a fixed order, so the
   // result does not depend on the thread count (no racy += into shared voxels). Splats
   // with lower x index x-1 and x: buckets x and x+1 of the counting sort.
   detail::parallelFor(points.cols(), 1024, threads,
                       [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
-                        pointFootprints(grid, points, values, all, inside, first, last);
+                        pointFootprints(grid, points, values, all.get(), inside.get(),
+                                        first, last);
                       });
-  sortBySlab(all, inside, sorted, slab_start);
+  sortBySlab(all.get(), inside.get(), count, sorted.get(), slab_start, threads);
   detail::parallelFor(
       nx, 4, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
         for (std::ptrdiff_t x = first; x < last; ++x)
-          accumulateSlab(grid, static_cast<int>(x), sorted.data() + slab_start[x],
-                         sorted.data() + slab_start[x + 2], values != nullptr,
+          accumulateSlab(grid, static_cast<int>(x), sorted.get() + slab_start[x],
+                         sorted.get() + slab_start[x + 2], values != nullptr,
                          saturation, volume.values, weighted);
       });
   return volume;
