@@ -11,9 +11,12 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <utility>
+#include <vector>
 
 using namespace pcl::phaser;
 
@@ -150,6 +153,36 @@ TEST(VoxelCentroids, OneSamplePerOccupiedVoxelInKeyOrder)
   EXPECT_TRUE(c.col(0).isApprox(Eigen::Vector3d(0.2, 0.4 / 3, 0.4 / 3)));
   EXPECT_TRUE(c.col(1).isApprox(Eigen::Vector3d(2.5, 0.5, 0.5)));
   EXPECT_EQ(voxelCentroids(p, 1.0, 2).cols(), 1);
+}
+
+TEST(GroupByVoxel, GroupsInKeyOrderAsASortOfThePairs)
+{
+  // Clouds of several extents (one voxel to 2e5 voxels per axis, negative coordinates
+  // included): groups in increasing key, each holding its points in index order, as
+  // std::sort of the (key, index) pairs gives.
+  std::mt19937 rng(11);
+  for (const double extent : {0.5, 30.0, 4000.0, 2e5}) {
+    std::uniform_real_distribution<double> u(-extent, 0.3 * extent);
+    Eigen::Matrix3Xd p(3, 3000);
+    for (Eigen::Index i = 0; i < p.cols(); ++i)
+      p.col(i) = Eigen::Vector3d(u(rng), u(rng), 0.01 * u(rng));
+    p.col(7) = p.col(3); // equal keys keep their index order
+    std::vector<std::pair<std::int64_t, Eigen::Index>> reference;
+    for (Eigen::Index i = 0; i < p.cols(); ++i) {
+      std::int64_t key = 0;
+      ASSERT_TRUE(voxelKey(p.col(i), 1.0, key));
+      reference.emplace_back(key, i);
+    }
+    std::sort(reference.begin(), reference.end());
+    const VoxelGroups g = groupByVoxel(p, 1.0);
+    ASSERT_EQ(g.order.size(), reference.size());
+    for (std::size_t k = 0; k < reference.size(); ++k)
+      ASSERT_EQ(g.order[k], reference[k].second) << "extent " << extent;
+    for (std::size_t k = 0; k < g.size(); ++k) {
+      ASSERT_EQ(g.keys[k], reference[g.offsets[k]].first);
+      ASSERT_EQ(g.keys[k], reference[g.offsets[k + 1] - 1].first);
+    }
+  }
 }
 
 TEST(VerifyPose, RightPoseVerifiesAndAShiftedOneDoesNot)
