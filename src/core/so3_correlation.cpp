@@ -330,7 +330,9 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
   const WignerTables tables{*steps_, log_factorials_, cos_beta_, log_cos_half_,
                             log_sin_half_};
   // Zeroing and the Wigner stage write disjoint entries (orders below B are the
-  // Wigner stage's), so they share one loop; the slices' FFTs need both.
+  // Wigner stage's), so they share one loop; the slices' FFTs need both. Four orders
+  // per chunk: neighbouring orders write neighbouring columns of every slice, which
+  // share cache lines (benchmarks.md 11.19).
   detail::parallelFor(std::max(rows, B), 4, num_threads,
                       [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
                         for (int k = static_cast<int>(first); k < last; ++k) {

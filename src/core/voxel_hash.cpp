@@ -83,6 +83,8 @@ class CompactKeys {
 public:
   explicit CompactKeys(const std::vector<std::pair<std::int64_t, Eigen::Index>>& keyed)
   {
+    if (keyed.empty())
+      return; // no bits: nothing to sort
     std::array<std::int64_t, 3> high{};
     low_.fill(kAxisMask);
     for (const auto& k : keyed)
