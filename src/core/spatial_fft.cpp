@@ -161,8 +161,14 @@ void forwardFft3d(const Eigen::Vector3i& dims, const double* in,
     for (std::ptrdiff_t x = first; x < last; ++x) {
       // Out-of-place 2-D r2c preserves its input, so casting away const is safe.
       double* slab = const_cast<double*>(in) + x * plans->slab_real;
-      fftw_execute_dft_r2c(plans->slab_forward[plans->slabIndex(slab)].get(), slab,
-                           asFftw(out + x * plans->slab_complex));
+      std::complex<double>* transformed = out + x * plans->slab_complex;
+      // A source's occupancy leaves the padding empty: half the slabs are zero, and so
+      // is their transform.
+      if (std::all_of(slab, slab + plans->slab_real, [](double v) { return v == 0.0; }))
+        std::fill_n(transformed, plans->slab_complex, std::complex<double>(0.0));
+      else
+        fftw_execute_dft_r2c(plans->slab_forward[plans->slabIndex(slab)].get(), slab,
+                             asFftw(transformed));
     }
   });
   parallelFor(ny, 4, num_threads,

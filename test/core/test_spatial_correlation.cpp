@@ -280,6 +280,38 @@ TEST(SpatialCorrelation, BadArgumentsThrow)
                InvalidArgument);
 }
 
+TEST(SpatialCorrelation, WhitenedProductIsTheCrossPowerOverItsRootMagnitude)
+{
+  // The default whitening (exponent 1/2) against its definition, on random spectra with
+  // zero bins (there the product is 0, not NaN): correlating F conj(G) / |F
+  // conj(G)|^(1/2) plainly with an all-ones spectrum gives the same volume.
+  const Eigen::Vector3i dims(6, 5, 8);
+  std::mt19937 rng(21);
+  std::normal_distribution<double> n;
+  SpatialSpectrum F = computeSpectrum(zeroVolume(dims));
+  SpatialSpectrum G = F, expected = F, ones = F;
+  for (std::size_t i = 0; i < F.coefficients.size(); ++i) {
+    F.coefficients[i] = {n(rng), n(rng)};
+    G.coefficients[i] = i % 7 == 3 ? 0.0 : std::complex<double>(n(rng), n(rng));
+    const std::complex<double> c = F.coefficients[i] * std::conj(G.coefficients[i]);
+    expected.coefficients[i] = std::abs(c) > 0.0 ? c / std::sqrt(std::abs(c)) : 0.0;
+    ones.coefficients[i] = 1.0;
+  }
+  const SpatialVolume want = correlateSpectra(expected, ones, 1);
+  for (int threads : {1, 3}) {
+    const SpatialVolume got =
+        correlateSpectraWhitened(F, SpatialSpectrum(G), 0.5, threads);
+    ASSERT_EQ(got.values.size(), want.values.size());
+    double worst = 0.0, largest = 0.0;
+    for (std::size_t i = 0; i < want.values.size(); ++i) {
+      ASSERT_TRUE(std::isfinite(got.values[i]));
+      worst = std::max(worst, std::abs(got.values[i] - want.values[i]));
+      largest = std::max(largest, std::abs(want.values[i]));
+    }
+    EXPECT_LT(worst, 1e-12 * largest) << threads << " threads";
+  }
+}
+
 TEST(SpatialCorrelation, ConcurrentCorrelationsMatchSerialOnes)
 {
   // Two threads execute the cached plans at once (new-array interface), with different
