@@ -21,10 +21,9 @@ namespace detail {
  * Computed as one 2-D r2c per x slab, then 1-D complex transforms along x, one batch
  * per y row. The pieces are fixed by the dims alone and each is one FFTW plan
  * execution, so the threads only decide who runs a piece: the result is bit-identical
- * for any thread count (FFTW's own threaded plans split by thread count); an all-zero
- * slab is not transformed (its transform is zero). Plans are
- * cached per dims; thread-safe. \a in is not modified; both arrays must come from
- * fftw_malloc. */
+ * for any thread count (FFTW's own threaded plans split by thread count). An all-zero
+ * slab is not transformed (its transform is zero). Plans are cached per dims;
+ * thread-safe. \a in is not modified; both arrays must come from fftw_malloc. */
 void forwardFft3d(const Eigen::Vector3i& dims, const double* in,
                   std::complex<double>* out, int num_threads);
 
