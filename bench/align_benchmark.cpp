@@ -8,11 +8,13 @@
  *
  *   pcl_phaser_align_benchmark [SOURCE TARGET] [-r repetitions] [-b bandwidth]
  *                              [-range_only] [-plain] [-busy]
+ *                              [-orientation_candidates N]
  * -range_only switches the intensity channel off, so the two runs show what fusing one
  * extra channel costs per stage; -plain refines the rotation on plain C only, not also
  * on the energy-normalized correlation (PhaserParameters::normalized_refinement =
  * false); -busy keeps one core busy with a spinning child process during the aligns (as
- * `yes > /dev/null` would: a robot running other nodes). Timings are wall-clock; every
+ * `yes > /dev/null` would: a robot running other nodes); -orientation_candidates sets
+ * PhaserParameters::orientation_candidates (default 10). Timings are wall-clock; every
  * stage is printed in ms and in FFT units (one 128^3 r2c FFT on one thread, measured
  * first), and the first align of each configuration (plans and tables built) is printed
  * apart.
@@ -84,18 +86,16 @@ private:
   pid_t pid_ = -1;
 };
 
-/** Median (by total time) of \a reps aligns; \a cached keeps the target model between.
- */
+/** Median (by total time) of \a reps aligns with \a params and \a threads threads;
+ *  \a cached keeps the target model between. */
 Row measure(const Cloud::Ptr& source, const Cloud::Ptr& target, int threads,
-            bool cached, int reps, int bandwidth, bool range_only, bool normalized)
+            bool cached, int reps, const pcl::phaser::PhaserParameters& params,
+            bool range_only)
 {
   std::vector<Row> rows;
   pcl::PhaserRegistration<PointT, PointT> phaser;
   phaser.setUseIntensity(!range_only);
-  pcl::phaser::PhaserParameters params = phaser.getParameters();
-  params.normalized_refinement = normalized;
   phaser.setParameters(params);
-  phaser.setBandwidth(bandwidth);
   phaser.setNumberOfThreads(threads);
   phaser.setInputSource(source);
   phaser.setInputTarget(target);
@@ -153,13 +153,19 @@ bool loadPair(int argc, char** argv, Cloud::Ptr& source, Cloud::Ptr& target,
 int main(int argc, char** argv)
 {
   int reps = 7, bandwidth = 64;
+  pcl::phaser::PhaserParameters params;
   pcl::console::parse_argument(argc, argv, "-r", reps);
   pcl::console::parse_argument(argc, argv, "-b", bandwidth);
+  pcl::console::parse_argument(argc, argv, "-orientation_candidates",
+                               params.orientation_candidates);
   const bool range_only = pcl::console::find_switch(argc, argv, "-range_only");
   const bool normalized = !pcl::console::find_switch(argc, argv, "-plain");
   const bool busy = pcl::console::find_switch(argc, argv, "-busy");
-  if (reps < 1 || bandwidth < 1 || bandwidth > 256) {
-    pcl::console::print_error("repetitions must be >= 1 and bandwidth in [1, 256]\n");
+  params.bandwidth = bandwidth;
+  params.normalized_refinement = normalized;
+  if (reps < 1 || !pcl::phaser::validateParameters(params).empty()) {
+    pcl::console::print_error("repetitions must be >= 1, bandwidth in [1, 256] and "
+                              "orientation candidates in [0, 20]\n");
     return 1;
   }
   Cloud::Ptr source, target;
@@ -189,8 +195,7 @@ int main(int argc, char** argv)
   };
   for (int threads : {1, 2})
     for (bool cached : {false, true}) {
-      const Row r = measure(source, target, threads, cached, reps, bandwidth,
-                            range_only, normalized);
+      const Row r = measure(source, target, threads, cached, reps, params, range_only);
       const pcl::phaser::PhaserResult& e = r.estimate;
       const double staged = e.target_ms + e.sampling_ms + e.sht_ms + e.so3_ms +
                             e.refinement_ms + e.translation_ms + e.orientation_ms +

@@ -30,6 +30,8 @@ struct MethodSettings {
   unsigned seed = 1;                 ///< std::srand seed of PCL's randomized aligners
   int fpcs_seconds = 10;             ///< time limit of FPCS / KFPCS
   bool normalized_refinement = true; ///< pcl_phaser's setNormalizedRefinement
+  /** pcl_phaser's PhaserParameters::orientation_candidates; < 0: its default */
+  int orientation_candidates = -1;
 };
 
 /** \brief pcl_phaser's verification of its final pose (NaN for other methods): what

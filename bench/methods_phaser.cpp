@@ -37,6 +37,8 @@ MethodResult align(const typename pcl::PointCloud<PointP>::ConstPtr& source,
   phaser.setNumberOfThreads(settings.threads);
   pcl::phaser::PhaserParameters params = phaser.getParameters();
   params.normalized_refinement = settings.normalized_refinement;
+  if (settings.orientation_candidates >= 0)
+    params.orientation_candidates = settings.orientation_candidates;
   params.projection_center = settings.centroid
                                  ? pcl::phaser::ProjectionCenter::Centroid
                                  : pcl::phaser::ProjectionCenter::SensorOrigin;

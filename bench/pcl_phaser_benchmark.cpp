@@ -97,6 +97,7 @@ struct Options {
   std::vector<std::string> conditions = {"clean"};
   std::vector<int> bandwidths = {64};
   int poses = 10, threads = 2, fpcs_seconds = 10;
+  int orientation_candidates = -1; ///< pcl_phaser's; < 0: its default
   unsigned seed = 1;
   bool icp = false, pairs = false;
   double rre_threshold = 5.0, rte_threshold = 0.6, t_max = 2.0;
@@ -127,6 +128,8 @@ void printHelp(const char* program)
       "  -bandwidths L  pcl_phaser bandwidths (default 64; nees: e.g. 32,64,128)\n"
       "  -threads N     threads for every method (default 2)\n"
       "  -fpcs_time S   time limit of FPCS/KFPCS in seconds (default 10)\n"
+      "  -orientation_candidates N  pcl_phaser's orientation hypotheses, 0..20\n"
+      "                 (default: the library's, 10)\n"
       "  -t_max M       largest random translation in meters (default 2)\n"
       "  -voxel V       leaf (m) of PCL's methods' downsampling; radii scale with it\n"
       "                 (default per scan: 1 m for LiDAR)\n"
@@ -157,6 +160,8 @@ bool parseOptions(int argc, char** argv, Options& o)
   console::parse_argument(argc, argv, "-seed", o.seed);
   console::parse_argument(argc, argv, "-threads", o.threads);
   console::parse_argument(argc, argv, "-fpcs_time", o.fpcs_seconds);
+  console::parse_argument(argc, argv, "-orientation_candidates",
+                          o.orientation_candidates);
   console::parse_argument(argc, argv, "-t_max", o.t_max);
   console::parse_argument(argc, argv, "-voxel", o.voxel);
   console::parse_argument(argc, argv, "-csv", o.csv);
@@ -205,6 +210,8 @@ bool parseOptions(int argc, char** argv, Options& o)
     fail("-threads");
   if (o.fpcs_seconds < 1)
     fail("-fpcs_time");
+  if (o.orientation_candidates > 20)
+    fail("-orientation_candidates");
   if (!(o.t_max >= 0.0))
     fail("-t_max");
   return ok;
@@ -227,6 +234,7 @@ public:
       settings.voxel = o_.voxel;
     settings.seed = o_.seed + static_cast<unsigned>(base.pose);
     settings.fpcs_seconds = o_.fpcs_seconds;
+    settings.orientation_candidates = o_.orientation_candidates;
     for (const std::string& name : o_.methods) {
       const Method& method =
           *std::find_if(allMethods().begin(), allMethods().end(),

@@ -50,6 +50,7 @@ struct RevisitOptions {
   std::string pairs_file; ///< empty: <data>/lidar/balm_handheld/pairs.txt
   std::vector<std::string> methods = {"phaser", "phaser_xyz", "sacia", "prerejective"};
   int max_pairs = 0, threads = 2, fpcs_seconds = 10;
+  int orientation_candidates = -1; ///< pcl_phaser's; < 0: its default
   int derived_pairs = 0; ///< per bin from the poses instead of the pairs file; 0: off
   unsigned seed = 1;
   double voxel = 1.0; ///< leaf of PCL's methods, as for the compare study's LiDAR
@@ -108,6 +109,8 @@ bool parseRevisitOptions(int argc, char** argv, RevisitOptions& o)
   console::parse_argument(argc, argv, "-seed", o.seed);
   console::parse_argument(argc, argv, "-voxel", o.voxel);
   console::parse_argument(argc, argv, "-fpcs_time", o.fpcs_seconds);
+  console::parse_argument(argc, argv, "-orientation_candidates",
+                          o.orientation_candidates);
   console::parse_argument(argc, argv, "-csv", o.csv);
   console::parse_argument(argc, argv, "-md", o.markdown);
   console::parse_argument(argc, argv, "-plots", o.plots);
@@ -133,6 +136,8 @@ bool parseRevisitOptions(int argc, char** argv, RevisitOptions& o)
     fail("-voxel");
   if (o.fpcs_seconds < 1)
     fail("-fpcs_time");
+  if (o.orientation_candidates > 20)
+    fail("-orientation_candidates");
   return ok;
 }
 
@@ -210,6 +215,7 @@ std::vector<RevisitTrial> runTrials(const RevisitOptions& o, const std::string& 
   settings.voxel = o.voxel;
   settings.seed = o.seed; // + pose, which is 0 for real pairs
   settings.fpcs_seconds = o.fpcs_seconds;
+  settings.orientation_candidates = o.orientation_candidates;
   std::map<std::string, Cloud::ConstPtr> scans; // each read once
   auto scan = [&](const std::string& name) {
     if (!scans.count(name))
@@ -403,6 +409,8 @@ void printRevisitsHelp(const char* program)
       "  -seed S          seed of PCL's RANSAC (default 1)\n"
       "  -voxel V         leaf (m) of PCL's methods (default 1)\n"
       "  -fpcs_time S     time limit of FPCS/KFPCS in seconds (default 10)\n"
+      "  -orientation_candidates N  pcl_phaser's orientation hypotheses, 0..20\n"
+      "                   (default: the library's, 10)\n"
       "  -csv FILE        every trial as CSV\n"
       "  -md FILE         the markdown summary (default: stdout)\n"
       "  -plots DIR       revisits_success.{dat,gp,png} (PNG with gnuplot)\n",
