@@ -71,7 +71,9 @@ struct PhaserParameters {
   bool normalized_refinement = true;
   /** \brief Rotation hypotheses from the surface-orientation histograms, tried beside
    *  the range peaks about sensor origins, 0..20 (0: none). When the best of them
-   *  would not be claimed, the next ten peaks of the histograms are tried as well. */
+   *  would not be claimed, the next ten peaks of the histograms are tried as well.
+   *  Two scans of one place taken apart need them: fewer make an align faster and
+   *  fail more revisits (doc/benchmarks.md 11.21). */
   int orientation_candidates = 10;
   /** \brief Bandwidth of the orientation histograms, 8..128. */
   int orientation_bandwidth = 32;
