@@ -152,16 +152,15 @@ bool loadPair(int argc, char** argv, Cloud::Ptr& source, Cloud::Ptr& target,
 
 int main(int argc, char** argv)
 {
-  int reps = 7, bandwidth = 64;
-  pcl::phaser::PhaserParameters params;
+  int reps = 7;
+  pcl::phaser::PhaserParameters params; // bandwidth 64 unless -b
   pcl::console::parse_argument(argc, argv, "-r", reps);
-  pcl::console::parse_argument(argc, argv, "-b", bandwidth);
+  pcl::console::parse_argument(argc, argv, "-b", params.bandwidth);
   pcl::console::parse_argument(argc, argv, "-orientation_candidates",
                                params.orientation_candidates);
   const bool range_only = pcl::console::find_switch(argc, argv, "-range_only");
   const bool normalized = !pcl::console::find_switch(argc, argv, "-plain");
   const bool busy = pcl::console::find_switch(argc, argv, "-busy");
-  params.bandwidth = bandwidth;
   params.normalized_refinement = normalized;
   if (reps < 1 || !pcl::phaser::validateParameters(params).empty()) {
     pcl::console::print_error("repetitions must be >= 1, bandwidth in [1, 256] and "
@@ -181,7 +180,7 @@ int main(int argc, char** argv)
       "median of %d%s; yardstick: one 128^3 r2c FFT (1 thread) = %.2f ms\n"
       "Each cell: ms / FFT units. \"first\": the first align of the configuration "
       "(tables and plans built the first time).\n\n",
-      name.c_str(), source->size(), target->size(), bandwidth,
+      name.c_str(), source->size(), target->size(), params.bandwidth,
       range_only ? "range" : "range + intensity", normalized ? "normalized" : "plain",
       reps, busy ? ", one core kept busy by a spinning process" : "", unit);
   std::printf("| threads | target | total | first | target prep | sampling | SHT "
