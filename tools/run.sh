@@ -12,8 +12,10 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${PCL_PHASER_BUILD_DIR:-$here/build}
 
 packages=(g++ make cmake pkg-config libpcl-dev libeigen3-dev libfftw3-dev libboost-dev
-          libgtest-dev xvfb xauth)
+          libgtest-dev nlohmann-json3-dev xvfb xauth)
 if [[ $job == benchmark ]]; then packages+=(gnuplot-nox); fi
+# The batch tool's tests run it sharded under GNU parallel and a single-node Slurm.
+if [[ $job == test ]]; then packages+=(parallel slurm-wlm munge); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

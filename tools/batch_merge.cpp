@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright (c) 2026, the pcl_phaser developers.
+//
+// mergeParts(): shard outputs joined into one file, loudly refusing gaps and repeats.
+#include "batch_records.h"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <unistd.h>
+
+namespace pcl {
+namespace phaser {
+namespace batch {
+namespace {
+
+bool endsWith(const std::string& text, const std::string& suffix)
+{
+  return text.size() >= suffix.size() &&
+         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::string mergeRecords(const std::string& out, const std::vector<std::string>& parts)
+{
+  std::map<std::size_t, std::pair<Record, std::string>> by_index;
+  std::size_t pairs = 0;
+  for (const std::string& part : parts) {
+    std::vector<Record> records;
+    if (::access(part.c_str(), R_OK) != 0)
+      return "cannot read '" + part + "': " + std::strerror(errno);
+    if (std::string error = readRecords(part, records, false); !error.empty())
+      return error;
+    for (Record& r : records) {
+      const std::size_t index = r["pair"].get<std::size_t>();
+      const std::size_t total = r.value("pairs", std::size_t{0});
+      if (pairs != 0 && total != pairs)
+        return "'" + part + "' comes from another list (" + std::to_string(total) +
+               " pairs, not " + std::to_string(pairs) + ")";
+      pairs = total;
+      const auto [it, fresh] = by_index.emplace(index, std::make_pair(r, part));
+      if (!fresh)
+        return "pair " + std::to_string(index) + " is in '" + it->second.second +
+               "' and in '" + part + "'";
+    }
+  }
+  std::vector<std::size_t> missing;
+  for (std::size_t i = 0; i < pairs; ++i)
+    if (!by_index.count(i))
+      missing.push_back(i);
+  if (!missing.empty() || by_index.size() != pairs)
+    return std::to_string(missing.size()) + " of " + std::to_string(pairs) +
+           " pairs are missing (the first: pair " +
+           (missing.empty() ? std::string("?") : std::to_string(missing[0])) +
+           "); rerun the shards that hold them";
+  std::string text;
+  for (const auto& [index, entry] : by_index)
+    text += entry.first.dump() + "\n";
+  return writeFileAtomically(out, text);
+}
+
+std::string mergeGraphs(const std::string& out, const std::vector<std::string>& parts)
+{
+  std::map<int, std::string> vertices;
+  std::map<std::pair<int, int>, std::string> edges;
+  for (const std::string& part : parts) {
+    std::ifstream in(part);
+    if (!in)
+      return "cannot read '" + part + "'";
+    int number = 0;
+    for (std::string line; std::getline(in, line);) {
+      ++number;
+      std::istringstream fields(line);
+      std::string tag;
+      int a = -1, b = -1;
+      if (!(fields >> tag))
+        continue;
+      const std::string at = "'" + part + "' line " + std::to_string(number);
+      if (tag == "VERTEX_SE3:QUAT" && fields >> a) {
+        const auto [it, fresh] = vertices.emplace(a, line);
+        if (!fresh && it->second != line)
+          return at + ": vertex " + std::to_string(a) + " differs from another part's";
+      } else if (tag == "EDGE_SE3:QUAT" && fields >> a >> b) {
+        if (!edges.emplace(std::make_pair(a, b), line).second)
+          return at + ": edge " + std::to_string(a) + " " + std::to_string(b) +
+                 " is present twice";
+      } else
+        return at + ": not a VERTEX_SE3:QUAT or EDGE_SE3:QUAT line";
+    }
+  }
+  std::string text;
+  for (const auto& [id, line] : vertices)
+    text += line + "\n";
+  for (const auto& [ids, line] : edges)
+    text += line + "\n";
+  return writeFileAtomically(out, text);
+}
+
+} // namespace
+
+std::string mergeParts(const std::string& out, const std::vector<std::string>& parts)
+{
+  if (parts.empty())
+    return "no parts to merge";
+  const bool graph = endsWith(out, ".g2o");
+  for (const std::string& part : parts)
+    if (endsWith(part, ".g2o") != graph)
+      return "'" + part + "' is not of the kind of '" + out +
+             "' (merge .jsonl parts into a .jsonl file, .g2o parts into a .g2o file)";
+  return graph ? mergeGraphs(out, parts) : mergeRecords(out, parts);
+}
+
+} // namespace batch
+} // namespace phaser
+} // namespace pcl

@@ -1,0 +1,297 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright (c) 2026, the pcl_phaser developers.
+//
+#include "batch_records.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace pcl {
+namespace phaser {
+namespace batch {
+namespace {
+
+template <int R, int C>
+Record nested(const Eigen::Matrix<double, R, C>& m)
+{
+  Record rows = Record::array();
+  for (int r = 0; r < R; ++r) {
+    Record row = Record::array();
+    for (int c = 0; c < C; ++c)
+      row.push_back(m(r, c));
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+/** \brief A nested R x C array of numbers as a matrix; false when it is not one. */
+template <int R, int C>
+bool matrixOf(const Record& value, Eigen::Matrix<double, R, C>& m)
+{
+  if (!value.is_array() || value.size() != R)
+    return false;
+  for (int r = 0; r < R; ++r) {
+    const Record& row = value[r];
+    if (!row.is_array() || row.size() != C)
+      return false;
+    for (int c = 0; c < C; ++c) {
+      if (!row[c].is_number())
+        return false;
+      m(r, c) = row[c].get<double>();
+    }
+  }
+  return true;
+}
+
+Record header(const Pair& pair, std::size_t pairs)
+{
+  Record r;
+  r["pair"] = pair.index;
+  r["pairs"] = pairs;
+  r["source"] = pair.source;
+  r["target"] = pair.target;
+  r["source_id"] = pair.source_id;
+  r["target_id"] = pair.target_id;
+  return r;
+}
+
+std::string quaternionText(const Eigen::Matrix3d& R)
+{
+  Eigen::Quaterniond q(R);
+  q.normalize();
+  if (q.w() < 0.0)
+    q.coeffs() = -q.coeffs();
+  char buffer[128];
+  std::snprintf(buffer, sizeof(buffer), "%.17g %.17g %.17g %.17g", q.x(), q.y(), q.z(),
+                q.w());
+  return buffer;
+}
+
+std::string positionText(const Eigen::Matrix4d& T)
+{
+  char buffer[96];
+  std::snprintf(buffer, sizeof(buffer), "%.17g %.17g %.17g", T(0, 3), T(1, 3), T(2, 3));
+  return buffer;
+}
+
+/** \brief Write all of \a text to \a fd. \return false on an error */
+bool writeAll(int fd, const std::string& text)
+{
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR)
+      continue;
+    if (n <= 0)
+      return false;
+    done += static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+std::string readWhole(const std::string& path, bool& exists, std::string& error)
+{
+  std::ifstream in(path, std::ios::binary);
+  exists = static_cast<bool>(in);
+  if (!in) {
+    if (errno != ENOENT)
+      error = "cannot read '" + path + "': " + std::strerror(errno);
+    return {};
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad())
+    error = "cannot read '" + path + "'";
+  return text.str();
+}
+
+} // namespace
+
+std::string pairKey(const std::string& source, const std::string& target)
+{
+  return source + '\n' + target;
+}
+
+Record alignedRecord(const Pair& pair, std::size_t pairs, const PhaserResult& result,
+                     const Eigen::Matrix<double, 6, 6>& covariance, double time_ms)
+{
+  if (!result.error.empty())
+    return failedRecord(pair, pairs, result.error);
+  Record r = header(pair, pairs);
+  r["status"] = "ok";
+  r["transformation"] = nested<4, 4>(result.transformation);
+  r["converged"] = result.converged;
+  r["covariance"] = nested<6, 6>(covariance);
+  r["inlier_fraction"] = result.inlier_fraction;
+  r["verification_score"] = result.verification_score;
+  r["free_space_violation"] = result.free_space_violation;
+  r["reverse_free_space_violation"] = result.reverse_free_space_violation;
+  r["constraint"] = result.constraint;
+  r["verification_rank"] = result.verification_rank;
+  r["runner_up_rank"] = result.runner_up_rank; // -infinity (none) is written as null
+  r["runner_up_error"] = result.runner_up_error;
+  r["rotation_score"] = result.rotation_score;
+  r["translation_score"] = result.translation_score;
+  r["normalized_overlap"] = result.normalized_overlap;
+  r["time_ms"] = time_ms;
+  r["target_ms"] = result.target_ms;
+  return r;
+}
+
+Record failedRecord(const Pair& pair, std::size_t pairs, const std::string& reason)
+{
+  Record r = header(pair, pairs);
+  r["status"] = "failed";
+  r["converged"] = false;
+  r["error"] = reason;
+  return r;
+}
+
+std::string readRecords(const std::string& path, std::vector<Record>& records,
+                        bool repair)
+{
+  records.clear();
+  bool exists = false;
+  std::string error;
+  const std::string text = readWhole(path, exists, error);
+  if (!error.empty() || !exists)
+    return error;
+  std::size_t start = 0;
+  for (int line = 1; start < text.size(); ++line) {
+    const std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) { // cut short by a kill: that pair is redone
+      if (!repair)
+        return "'" + path + "' line " + std::to_string(line) + " is cut short";
+      if (::truncate(path.c_str(), static_cast<off_t>(start)) != 0)
+        return "cannot repair '" + path + "': " + std::strerror(errno);
+      break;
+    }
+    const std::string body = text.substr(start, end - start);
+    start = end + 1;
+    if (body.find_first_not_of(" \t\r") == std::string::npos)
+      continue;
+    Record r = Record::parse(body, nullptr, false);
+    if (r.is_discarded() || !r.is_object() || !r.contains("pair") ||
+        !r["pair"].is_number_unsigned() || !r.contains("source") ||
+        !r.contains("target"))
+      return "'" + path + "' line " + std::to_string(line) + " is not a pair record";
+    records.push_back(std::move(r));
+  }
+  return {};
+}
+
+std::string RecordWriter::open(const std::string& path)
+{
+  path_ = path;
+  fd_ = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0)
+    return "cannot write '" + path + "': " + std::strerror(errno);
+  return {};
+}
+
+std::string RecordWriter::append(const Record& record)
+{
+  if (!writeAll(fd_, record.dump() + "\n"))
+    return "cannot write '" + path_ + "': " + std::strerror(errno);
+  if (::fdatasync(fd_) != 0 && errno != EINVAL)
+    return "cannot sync '" + path_ + "': " + std::strerror(errno);
+  return {};
+}
+
+RecordWriter::~RecordWriter()
+{
+  if (fd_ >= 0)
+    ::close(fd_);
+}
+
+Eigen::Matrix<double, 6, 6>
+g2oInformation(const Eigen::Matrix4d& T, const Eigen::Matrix<double, 6, 6>& covariance)
+{
+  const Eigen::Matrix3d Rt = T.topLeftCorner<3, 3>().transpose();
+  Eigen::Matrix<double, 6, 6> J = Eigen::Matrix<double, 6, 6>::Zero();
+  J.topRightCorner<3, 3>() = Rt;         // translation error <- nu
+  J.bottomLeftCorner<3, 3>() = 0.5 * Rt; // quaternion x y z <- omega / 2
+  const Eigen::Matrix<double, 6, 6> c = J * covariance * J.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(
+      0.5 * (c + c.transpose()));
+  if (eig.info() != Eigen::Success || !(eig.eigenvalues().minCoeff() > 0.0))
+    return Eigen::Matrix<double, 6, 6>::Zero();
+  return eig.eigenvectors() * eig.eigenvalues().cwiseInverse().asDiagonal() *
+         eig.eigenvectors().transpose();
+}
+
+std::string g2oEdge(const Record& record)
+{
+  Eigen::Matrix4d T;
+  Eigen::Matrix<double, 6, 6> covariance;
+  if (record.value("status", "") != "ok" || !record.value("converged", false) ||
+      !matrixOf<4, 4>(record["transformation"], T) ||
+      !matrixOf<6, 6>(record["covariance"], covariance))
+    return {};
+  const Eigen::Matrix<double, 6, 6> info = g2oInformation(T, covariance);
+  if (info.isZero(0.0))
+    return {};
+  std::string line = "EDGE_SE3:QUAT " + std::to_string(record["target_id"].get<int>()) +
+                     " " + std::to_string(record["source_id"].get<int>()) + " " +
+                     positionText(T) + " " + quaternionText(T.topLeftCorner<3, 3>());
+  char buffer[32];
+  for (int i = 0; i < 6; ++i)
+    for (int j = i; j < 6; ++j) {
+      std::snprintf(buffer, sizeof(buffer), " %.17g", info(i, j));
+      line += buffer;
+    }
+  return line;
+}
+
+std::string g2oVertex(int id, const Eigen::Matrix4d& pose)
+{
+  return "VERTEX_SE3:QUAT " + std::to_string(id) + " " + positionText(pose) + " " +
+         quaternionText(pose.topLeftCorner<3, 3>());
+}
+
+std::string writeFileAtomically(const std::string& path, const std::string& text)
+{
+  const std::string temporary = path + ".tmp." + std::to_string(::getpid());
+  const int fd =
+      ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0)
+    return "cannot write '" + temporary + "': " + std::strerror(errno);
+  const bool ok = writeAll(fd, text) && ::fsync(fd) == 0;
+  ::close(fd);
+  if (!ok || ::rename(temporary.c_str(), path.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    ::unlink(temporary.c_str());
+    return "cannot write '" + path + "': " + reason;
+  }
+  return {};
+}
+
+std::string g2oGraph(const std::vector<Record>& records,
+                     const std::vector<Eigen::Matrix4d>& poses)
+{
+  std::string out;
+  for (std::size_t id = 0; id < poses.size(); ++id)
+    out += g2oVertex(static_cast<int>(id), poses[id]) + "\n";
+  std::map<std::pair<int, int>, std::string> edges;
+  for (const Record& r : records)
+    if (std::string edge = g2oEdge(r); !edge.empty())
+      edges[{r["target_id"].get<int>(), r["source_id"].get<int>()}] = std::move(edge);
+  for (const auto& [ids, edge] : edges)
+    out += edge + "\n";
+  return out;
+}
+
+} // namespace batch
+} // namespace phaser
+} // namespace pcl

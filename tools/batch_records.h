@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright (c) 2026, the pcl_phaser developers.
+//
+/** \file batch_records.h
+ * \brief The outputs of `pcl_phaser_batch`: one JSON record per pair in a JSONL file
+ * that survives being killed at any moment, and the g2o pose graph made from them.
+ */
+#pragma once
+
+#include "batch_pairs.h"
+
+#include <pcl_phaser/core/pipeline.h>
+
+#include <Eigen/Core>
+
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace pcl {
+namespace phaser {
+namespace batch {
+
+/** \brief One record: members keep the order they are written in. */
+using Record = nlohmann::ordered_json;
+
+/** \brief The record of a pair that was aligned: source, target, their ids, pair
+ *  index and count, transformation (4x4 row-major), converged, covariance (6x6, the
+ *  order of getCovariance(): rotation vector [rad], translation [m]), the
+ *  verification figures and time_ms. Numbers round-trip exactly. */
+Record alignedRecord(const Pair& pair, std::size_t pairs, const PhaserResult& result,
+                     const Eigen::Matrix<double, 6, 6>& covariance, double time_ms);
+
+/** \brief The record of a pair that could not be aligned: status "failed" and why. */
+Record failedRecord(const Pair& pair, std::size_t pairs, const std::string& reason);
+
+/** \brief The key that identifies a pair in records: source and target as given. */
+std::string pairKey(const std::string& source, const std::string& target);
+
+/** \brief Read a JSONL file of records. With \a repair, a last line cut short by a
+ *  kill (no newline at the end, or not JSON) is cut off the file, so appending goes
+ *  on from the last whole record; any other bad line is an error.
+ *  \param[in] path the file (a missing file reads as no records)
+ *  \param[out] records the records, in file order
+ *  \return empty on success, else the reason */
+std::string readRecords(const std::string& path, std::vector<Record>& records,
+                        bool repair);
+
+/** \brief Appends records to a JSONL file, each line in one write() and synced to the
+ *  disk before the next pair starts. */
+class RecordWriter {
+public:
+  /** \brief Open \a path for appending (created when missing). \return the reason on
+   *  failure, else empty */
+  std::string open(const std::string& path);
+  /** \brief Append \a record as one line. \return the reason on failure, else empty */
+  std::string append(const Record& record);
+  ~RecordWriter();
+
+private:
+  int fd_ = -1;
+  std::string path_;
+};
+
+/** \brief The information matrix of a g2o EDGE_SE3:QUAT for measurement \a T
+ *  (T_target_source) and \a covariance (getCovariance()'s order and frames): g2o's
+ *  error is (translation, quaternion x y z) of T^-1 T_true, so (omega, nu) of the
+ *  target frame map to (R^T nu, R^T omega / 2). */
+Eigen::Matrix<double, 6, 6>
+g2oInformation(const Eigen::Matrix4d& T, const Eigen::Matrix<double, 6, 6>& covariance);
+
+/** \brief `EDGE_SE3:QUAT i j x y z qx qy qz qw` and the 21 upper-triangular entries of
+ *  the information, for a converged record; empty for any other. */
+std::string g2oEdge(const Record& record);
+
+/** \brief `VERTEX_SE3:QUAT id x y z qx qy qz qw` of \a pose. */
+std::string g2oVertex(int id, const Eigen::Matrix4d& pose);
+
+/** \brief Write a file whole or not at all: a temporary beside it, synced, renamed.
+ *  \return the reason on failure, else empty */
+std::string writeFileAtomically(const std::string& path, const std::string& text);
+
+/** \brief The g2o graph of \a records (edges of converged pairs, sorted by target and
+ *  source id) with a vertex per pose of \a poses. */
+std::string g2oGraph(const std::vector<Record>& records,
+                     const std::vector<Eigen::Matrix4d>& poses);
+
+/** \brief Join shard outputs into \a out: JSONL parts (sorted by pair index; every
+ *  index of the list exactly once) or g2o parts (vertices agreeing, each edge once),
+ *  chosen by \a out's extension. \return the reason on failure, else empty */
+std::string mergeParts(const std::string& out, const std::vector<std::string>& parts);
+
+} // namespace batch
+} // namespace phaser
+} // namespace pcl

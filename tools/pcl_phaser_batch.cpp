@@ -1,0 +1,240 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright (c) 2026, the pcl_phaser developers.
+//
+/** \file pcl_phaser_batch.cpp
+ * \brief pcl_phaser_batch: many registrations in one process, as verified pose-graph
+ * edges: pair lists or loop-closure candidates from a trajectory in, one JSON record
+ * per pair and a g2o graph out; resumable, shardable (GNU parallel, Slurm arrays), and
+ * `merge` to join the shards. Options and exit codes: printHelp().
+ */
+#include "batch_pairs.h"
+#include "batch_records.h"
+#include "batch_runner.h"
+
+#include <pcl/console/print.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+using namespace pcl::console;
+namespace batch = pcl::phaser::batch;
+
+namespace {
+
+void printHelp(const char* name)
+{
+  std::printf(
+      "Syntax: %s --pairs LIST --out RESULTS.jsonl [options]\n"
+      "        %s --scans LIST --poses POSES --radius R --min-gap K "
+      "(--out RESULTS.jsonl | --print-pairs) [options]\n"
+      "        %s merge OUT PARTS...\n"
+      "  Registers every pair with PHASER, each target prepared once, and appends one "
+      "JSON record\n  per pair to RESULTS.jsonl as it finishes; rerunning the same "
+      "command resumes.\n"
+      "    --pairs LIST      = one pair per line: SOURCE TARGET [12 numbers: row-major "
+      "3x4 guess of\n"
+      "                        T_target_source]; '#' comments; relative paths against "
+      "LIST's folder\n"
+      "    --scans LIST      = one scan path per line; with --poses (one row-major 3x4 "
+      "T_world_scan per line,\n"
+      "                        the last 12 numbers) every pair within --radius m and "
+      "at least --min-gap scans\n"
+      "                        apart, the earlier scan as target\n"
+      "    --print-pairs     = print those candidates as a --pairs list and exit\n"
+      "    --g2o FILE        = write the converged pairs as EDGE_SE3:QUAT (i = target, "
+      "j = source) with\n"
+      "                        their information; with --poses the VERTEX_SE3:QUAT "
+      "lines too\n"
+      "    --shard K/N       = the K-th of N disjoint parts, K = 0..N-1 (default: "
+      "SLURM_ARRAY_TASK_ID /\n"
+      "                        SLURM_ARRAY_TASK_COUNT when set, else 0/1)\n"
+      "    --cache N         = clouds and prepared targets kept, 1..4096 (default: 4)\n"
+      "    --threads T       = engine threads, 0..64 (default: 0, one per hardware "
+      "thread)\n"
+      "    -b B, --grid N, --passes K, --center sensor|centroid|auto = as in "
+      "pcl_phaser_align\n"
+      "  merge OUT PARTS... joins shard outputs: .jsonl parts into OUT.jsonl (every "
+      "pair exactly once),\n"
+      "  .g2o parts into OUT.g2o. Exit codes: 0 done (failed pairs are recorded with "
+      "their reason),\n"
+      "  1 usage, 2 unreadable input list, 3 output not writable, 130 stopped by "
+      "SIGINT/SIGTERM (resume).\n",
+      name, name, name);
+}
+
+int usage(const std::string& reason)
+{
+  print_error("%s (see -h)\n", reason.c_str());
+  return batch::kUsage;
+}
+
+/** \brief The options given, by name; switches map to "". */
+using Given = std::map<std::string, std::string>;
+
+int collect(int argc, char** argv, Given& given)
+{
+  static const std::map<std::string, bool> takes_value = {
+      {"--pairs", true},     {"--scans", true},   {"--poses", true},
+      {"--radius", true},    {"--min-gap", true}, {"--print-pairs", false},
+      {"--out", true},       {"--g2o", true},     {"--shard", true},
+      {"--cache", true},     {"--threads", true}, {"-b", true},
+      {"--bandwidth", true}, {"--grid", true},    {"--passes", true},
+      {"--center", true},    {"-h", false},       {"--help", false}};
+  for (int i = 1; i < argc; ++i) {
+    const auto spec = takes_value.find(argv[i]);
+    if (spec == takes_value.end())
+      return usage(std::string("Unknown argument '") + argv[i] + "'");
+    if (spec->second && i + 1 >= argc)
+      return usage("Option " + spec->first + " needs a value");
+    const std::string name = spec->first == "--bandwidth" ? "-b" : spec->first;
+    if (given.count(name))
+      return usage("Option " + spec->first + " is given twice");
+    given[name] = spec->second ? argv[++i] : "";
+  }
+  return batch::kOk;
+}
+
+/** \brief An integer option in [lo, hi] into \a value (left alone when absent). */
+int integer(const Given& given, const std::string& name, long lo, long hi, int& value)
+{
+  const auto it = given.find(name);
+  if (it == given.end())
+    return batch::kOk;
+  char* end = nullptr;
+  errno = 0;
+  const long v = std::strtol(it->second.c_str(), &end, 10);
+  if (it->second.empty() || *end != '\0' || errno != 0 || v < lo || v > hi)
+    return usage("Invalid value '" + it->second + "' for " + name +
+                 ": expected an integer in [" + std::to_string(lo) + ", " +
+                 std::to_string(hi) + "]");
+  value = static_cast<int>(v);
+  return batch::kOk;
+}
+
+int engineSettings(const Given& given, pcl::phaser::PhaserParameters& p, int& cache)
+{
+  for (const int rc : {integer(given, "-b", 1, 256, p.bandwidth),
+                       integer(given, "--grid", 8, 1024, p.spatial_grid_size),
+                       integer(given, "--passes", 1, 5, p.passes),
+                       integer(given, "--threads", 0, 64, p.num_threads),
+                       integer(given, "--cache", 1, 4096, cache)})
+    if (rc != batch::kOk)
+      return rc;
+  const auto center = given.find("--center");
+  if (center != given.end()) {
+    using C = pcl::phaser::ProjectionCenter;
+    const std::map<std::string, C> centers = {
+        {"sensor", C::SensorOrigin}, {"centroid", C::Centroid}, {"auto", C::Automatic}};
+    if (!centers.count(center->second))
+      return usage("Invalid --center '" + center->second +
+                   "': expected sensor, centroid or auto");
+    p.projection_center = centers.at(center->second);
+  }
+  return batch::kOk;
+}
+
+/** \brief --shard, else the Slurm array task, else 0/1. */
+int shardSettings(const Given& given, int& k, int& n)
+{
+  std::string text = given.count("--shard") ? given.at("--shard") : "";
+  const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
+  const char* count = std::getenv("SLURM_ARRAY_TASK_COUNT");
+  if (text.empty() && id && count) {
+    const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
+    text = std::to_string(std::atol(id) - (min ? std::atol(min) : 0)) + "/" + count;
+  }
+  if (text.empty())
+    text = "0/1";
+  const auto shard = batch::parseShard(text);
+  if (!shard)
+    return usage("Invalid shard '" + text + "': expected K/N with 0 <= K < N");
+  std::tie(k, n) = *shard;
+  return batch::kOk;
+}
+
+/** \brief Loop-closure candidates from --scans, --poses, --radius, --min-gap. */
+int candidates(const Given& given, batch::PairList& list)
+{
+  for (const char* name : {"--poses", "--radius", "--min-gap"})
+    if (!given.count(name))
+      return usage(std::string("--scans needs ") + name);
+  char* end = nullptr;
+  const std::string& radius_text = given.at("--radius");
+  const double radius = std::strtod(radius_text.c_str(), &end);
+  if (radius_text.empty() || *end != '\0' || !(radius > 0.0) || !std::isfinite(radius))
+    return usage("Invalid --radius '" + radius_text + "': expected meters > 0");
+  int gap = 1;
+  if (const int rc = integer(given, "--min-gap", 1, 1000000, gap); rc != batch::kOk)
+    return rc;
+  std::vector<std::string> names, paths;
+  std::vector<Eigen::Matrix4d> poses;
+  std::string error = batch::readScanList(given.at("--scans"), names, paths);
+  if (error.empty())
+    error = batch::readPoses(given.at("--poses"), poses);
+  if (error.empty() && poses.size() != names.size())
+    error = "'" + given.at("--poses") + "' holds " + std::to_string(poses.size()) +
+            " poses for the " + std::to_string(names.size()) + " scans of '" +
+            given.at("--scans") + "'";
+  if (!error.empty())
+    return print_error("%s\n", error.c_str()), batch::kInput;
+  list = batch::makeCandidates(names, paths, poses, radius, gap);
+  return batch::kOk;
+}
+
+int merge(int argc, char** argv)
+{
+  if (argc < 4)
+    return usage("merge needs OUT and at least one part");
+  const std::vector<std::string> parts(argv + 3, argv + argc);
+  const std::string error = batch::mergeParts(argv[2], parts);
+  if (error.empty())
+    return batch::kOk;
+  print_error("merge: %s\n", error.c_str());
+  return error.rfind("cannot write", 0) == 0 ? batch::kOutput : batch::kInput;
+}
+
+int run(const Given& given)
+{
+  batch::RunSettings settings;
+  for (const int rc : {engineSettings(given, settings.params, settings.cache),
+                       shardSettings(given, settings.shard, settings.shards)})
+    if (rc != batch::kOk)
+      return rc;
+  if (given.count("--pairs") == given.count("--scans"))
+    return usage("Give either --pairs or --scans");
+  batch::PairList list;
+  if (given.count("--scans")) {
+    if (const int rc = candidates(given, list); rc != batch::kOk)
+      return rc;
+  } else if (const std::string error = batch::readPairList(given.at("--pairs"), list);
+             !error.empty())
+    return print_error("%s\n", error.c_str()), batch::kInput;
+  if (given.count("--print-pairs"))
+    return std::cout << batch::formatPairList(list) << std::flush, batch::kOk;
+  if (!given.count("--out"))
+    return usage("--out RESULTS.jsonl is required");
+  settings.out = given.at("--out");
+  settings.g2o = given.count("--g2o") ? given.at("--g2o") : "";
+  return batch::runBatch(list, settings);
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  if (argc >= 2 && std::string(argv[1]) == "merge")
+    return merge(argc, argv);
+  Given given;
+  if (const int rc = collect(argc, argv, given); rc != batch::kOk)
+    return rc;
+  if (argc == 1 || given.count("-h") || given.count("--help"))
+    return printHelp(argv[0]), argc == 1 ? batch::kUsage : batch::kOk;
+  return run(given);
+}
