@@ -8,7 +8,7 @@
  *
  *   pcl_phaser_align_benchmark [SOURCE TARGET] [-r repetitions] [-b bandwidth]
  *                              [-range_only] [-plain] [-busy]
- *                              [-orientation_candidates N]
+ *                              [-orientation_candidates N] [-first threads]
  * -range_only switches the intensity channel off, so the two runs show what fusing one
  * extra channel costs per stage; -plain refines the rotation on plain C only, not also
  * on the energy-normalized correlation (PhaserParameters::normalized_refinement =
@@ -17,7 +17,10 @@
  * PhaserParameters::orientation_candidates (default 10). Timings are wall-clock; every
  * stage is printed in ms and in FFT units (one 128^3 r2c FFT on one thread, measured
  * first), and the first align of each configuration (plans and tables built) is printed
- * apart.
+ * apart. -first runs the first align of the process instead, before anything else has
+ * run (the yardstick is measured after it: its buffers would warm the allocator), then
+ * the next fresh and the cached aligns, with the minor page faults of each and the
+ * first transformation in full (doc/benchmarks.md, "First align in a process").
  */
 #include "cloud_reading.h"
 #include "fft_yardstick.h"
@@ -36,6 +39,7 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <sys/resource.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -121,6 +125,75 @@ Row measure(const Cloud::Ptr& source, const Cloud::Ptr& target, int threads,
   return rows[rows.size() / 2];
 }
 
+/** Minor page faults of the process so far. */
+long minorFaults()
+{
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_minflt;
+}
+
+/** One align's wall time and page faults. */
+struct Timed {
+  double ms = 0.0;
+  long faults = 0;
+};
+
+Timed timedAlign(pcl::PhaserRegistration<PointT, PointT>& phaser)
+{
+  Cloud out;
+  const long faults = minorFaults();
+  const auto start = std::chrono::steady_clock::now();
+  phaser.align(out);
+  return {msSince(start), minorFaults() - faults};
+}
+
+/** Median by time. */
+Timed median(std::vector<Timed> runs)
+{
+  std::sort(runs.begin(), runs.end(),
+            [](const Timed& a, const Timed& b) { return a.ms < b.ms; });
+  return runs[runs.size() / 2];
+}
+
+/** The first align of the process, then the medians of \a reps fresh (the target set
+ *  again) and \a reps cached aligns, each printed with its page faults, in ms and in
+ *  FFT units of a yardstick measured after them; the first transformation in full. */
+void firstInProcess(const Cloud::Ptr& source, const Cloud::Ptr& target, int threads,
+                    int reps, const pcl::phaser::PhaserParameters& params,
+                    bool range_only)
+{
+  pcl::PhaserRegistration<PointT, PointT> phaser;
+  phaser.setUseIntensity(!range_only);
+  phaser.setParameters(params);
+  phaser.setNumberOfThreads(threads);
+  phaser.setInputSource(source);
+  phaser.setInputTarget(target);
+  const Timed first = timedAlign(phaser);
+  const Eigen::Matrix4d transformation = phaser.getResult().transformation;
+  std::vector<Timed> fresh, cached;
+  for (int i = 0; i < reps; ++i) {
+    phaser.setInputTarget(target);
+    fresh.push_back(timedAlign(phaser));
+  }
+  for (int i = 0; i < reps; ++i)
+    cached.push_back(timedAlign(phaser));
+  const Timed f = median(fresh), c = median(cached);
+  const double unit = pcl::phaser::bench::fftYardstickMs();
+  std::printf(
+      "yardstick (measured after the aligns): one 128^3 r2c FFT (1 thread) = "
+      "%.2f ms\n\n| threads | first | next fresh | cached | first / next "
+      "fresh | page faults first / fresh / cached |\n|---|---|---|---|---|---|\n"
+      "| %d | %.1f ms / %.1f | %.1f ms / %.1f | %.1f ms / %.1f | %.2fx | %ld / "
+      "%ld / %ld |\n\nfirst transformation:",
+      unit, threads, first.ms, first.ms / unit, f.ms, f.ms / unit, c.ms, c.ms / unit,
+      first.ms / f.ms, first.faults, f.faults, c.faults);
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 4; ++k)
+      std::printf(" %.17g", transformation(r, k));
+  std::printf("\n");
+}
+
 bool loadPair(int argc, char** argv, Cloud::Ptr& source, Cloud::Ptr& target,
               std::string& name)
 {
@@ -171,6 +244,14 @@ int main(int argc, char** argv)
   std::string name;
   if (!loadPair(argc, argv, source, target, name))
     return 2;
+  int first_threads = 0;
+  if (pcl::console::parse_argument(argc, argv, "-first", first_threads) >= 0) {
+    std::printf("pair: %s (%zu -> %zu points), bandwidth %d, first align of the "
+                "process, then medians of %d\n",
+                name.c_str(), source->size(), target->size(), params.bandwidth, reps);
+    firstInProcess(source, target, first_threads, reps, params, range_only);
+    return 0;
+  }
   const double unit = pcl::phaser::bench::fftYardstickMs();
   std::optional<BusyCore> spinner;
   if (busy)
