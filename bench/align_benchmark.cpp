@@ -8,7 +8,8 @@
  *
  *   pcl_phaser_align_benchmark [SOURCE TARGET] [-r repetitions] [-b bandwidth]
  *                              [-range_only] [-plain] [-busy]
- *                              [-orientation_candidates N] [-first threads]
+ *                              [-orientation_candidates N]
+ *                              [-first threads [-warm_up [-keep_memory]]]
  * -range_only switches the intensity channel off, so the two runs show what fusing one
  * extra channel costs per stage; -plain refines the rotation on plain C only, not also
  * on the energy-normalized correlation (PhaserParameters::normalized_refinement =
@@ -20,12 +21,16 @@
  * apart. -first runs the first align of the process instead, before anything else has
  * run (the yardstick is measured after it: its buffers would warm the allocator), then
  * the next fresh and the cached aligns, with the minor page faults of each and the
- * first transformation in full (doc/benchmarks.md, "First align in a process").
+ * first transformation in full (doc/benchmarks.md, "First align in a process");
+ * -warm_up runs pcl::phaser::warmUp on a thread while the clouds are read (as a batch
+ * tool would) and prints its time and the reading's, -keep_memory sets its
+ * WarmUpOptions::keep_memory.
  */
 #include "cloud_reading.h"
 #include "fft_yardstick.h"
 #include "scan_simulator.h"
 
+#include <pcl_phaser/core/warm_up.h>
 #include <pcl_phaser/phaser_registration.h>
 
 #include <pcl/console/parse.h>
@@ -42,6 +47,7 @@
 #include <sys/resource.h>
 #include <sys/types.h>
 #include <sys/wait.h>
+#include <thread>
 #include <unistd.h>
 #include <vector>
 
@@ -221,6 +227,48 @@ bool loadPair(int argc, char** argv, Cloud::Ptr& source, Cloud::Ptr& target,
   return true;
 }
 
+/** -first: reads the pair, with -warm_up while pcl::phaser::warmUp runs on a thread,
+ *  then firstInProcess. */
+int firstAlignRun(int argc, char** argv, const pcl::phaser::PhaserParameters& params,
+                  int reps, bool range_only)
+{
+  pcl::phaser::WarmUpOptions options;
+  options.channels = range_only ? 0 : 1;
+  options.keep_memory = pcl::console::find_switch(argc, argv, "-keep_memory");
+  const bool warm = pcl::console::find_switch(argc, argv, "-warm_up");
+  double warm_ms = 0.0;
+  std::string warm_error;
+  const auto start = std::chrono::steady_clock::now();
+  std::thread warm_up;
+  if (warm)
+    warm_up = std::thread([&] {
+      warm_error = pcl::phaser::warmUp(params, options);
+      warm_ms = msSince(start);
+    });
+  Cloud::Ptr source, target;
+  std::string name;
+  const bool loaded = loadPair(argc, argv, source, target, name);
+  const double load_ms = msSince(start);
+  if (warm)
+    warm_up.join();
+  if (!loaded || !warm_error.empty()) {
+    pcl::console::print_error("%s\n", warm_error.c_str());
+    return 2;
+  }
+  std::printf("pair: %s (%zu -> %zu points), bandwidth %d, first align of the process, "
+              "then medians of %d\nreading the pair: %.1f ms; warm-up%s: %s\n",
+              name.c_str(), source->size(), target->size(), params.bandwidth, reps,
+              load_ms, options.keep_memory ? " (memory kept)" : "",
+              warm ? (std::to_string(warm_ms) +
+                      " ms, on a thread beside the reading, "
+                      "waited for " +
+                      std::to_string(std::max(0.0, warm_ms - load_ms)) + " ms")
+                         .c_str()
+                   : "none");
+  firstInProcess(source, target, params.num_threads, reps, params, range_only);
+  return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -240,18 +288,15 @@ int main(int argc, char** argv)
                               "orientation candidates in [0, 20]\n");
     return 1;
   }
+  int first_threads = 0;
+  if (pcl::console::parse_argument(argc, argv, "-first", first_threads) >= 0) {
+    params.num_threads = first_threads;
+    return firstAlignRun(argc, argv, params, reps, range_only);
+  }
   Cloud::Ptr source, target;
   std::string name;
   if (!loadPair(argc, argv, source, target, name))
     return 2;
-  int first_threads = 0;
-  if (pcl::console::parse_argument(argc, argv, "-first", first_threads) >= 0) {
-    std::printf("pair: %s (%zu -> %zu points), bandwidth %d, first align of the "
-                "process, then medians of %d\n",
-                name.c_str(), source->size(), target->size(), params.bandwidth, reps);
-    firstInProcess(source, target, first_threads, reps, params, range_only);
-    return 0;
-  }
   const double unit = pcl::phaser::bench::fftYardstickMs();
   std::optional<BusyCore> spinner;
   if (busy)
