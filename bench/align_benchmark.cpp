@@ -9,6 +9,7 @@
  *   pcl_phaser_align_benchmark [SOURCE TARGET] [-r repetitions] [-b bandwidth]
  *                              [-range_only] [-plain] [-busy]
  *                              [-orientation_candidates N]
+ *                              [-first threads [-warm_up [-keep_memory]]]
  * -range_only switches the intensity channel off, so the two runs show what fusing one
  * extra channel costs per stage; -plain refines the rotation on plain C only, not also
  * on the energy-normalized correlation (PhaserParameters::normalized_refinement =
@@ -17,12 +18,19 @@
  * PhaserParameters::orientation_candidates (default 10). Timings are wall-clock; every
  * stage is printed in ms and in FFT units (one 128^3 r2c FFT on one thread, measured
  * first), and the first align of each configuration (plans and tables built) is printed
- * apart.
+ * apart. -first runs the first align of the process instead, before anything else has
+ * run (the yardstick is measured after it: its buffers would warm the allocator), then
+ * the next fresh and the cached aligns, with the minor page faults of each and the
+ * first transformation in full (doc/benchmarks.md, "First align in a process");
+ * -warm_up runs pcl::phaser::warmUp on a thread while the clouds are read (as a batch
+ * tool would) and prints its time and the reading's, -keep_memory sets its
+ * WarmUpOptions::keep_memory.
  */
 #include "cloud_reading.h"
 #include "fft_yardstick.h"
 #include "scan_simulator.h"
 
+#include <pcl_phaser/core/warm_up.h>
 #include <pcl_phaser/phaser_registration.h>
 
 #include <pcl/console/parse.h>
@@ -36,8 +44,10 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <sys/resource.h>
 #include <sys/types.h>
 #include <sys/wait.h>
+#include <thread>
 #include <unistd.h>
 #include <vector>
 
@@ -121,6 +131,75 @@ Row measure(const Cloud::Ptr& source, const Cloud::Ptr& target, int threads,
   return rows[rows.size() / 2];
 }
 
+/** Minor page faults of the process so far. */
+long minorFaults()
+{
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_minflt;
+}
+
+/** One align's wall time and page faults. */
+struct Timed {
+  double ms = 0.0;
+  long faults = 0;
+};
+
+Timed timedAlign(pcl::PhaserRegistration<PointT, PointT>& phaser)
+{
+  Cloud out;
+  const long faults = minorFaults();
+  const auto start = std::chrono::steady_clock::now();
+  phaser.align(out);
+  return {msSince(start), minorFaults() - faults};
+}
+
+/** Median by time. */
+Timed median(std::vector<Timed> runs)
+{
+  std::sort(runs.begin(), runs.end(),
+            [](const Timed& a, const Timed& b) { return a.ms < b.ms; });
+  return runs[runs.size() / 2];
+}
+
+/** The first align of the process, then the medians of \a reps fresh (the target set
+ *  again) and \a reps cached aligns, each printed with its page faults, in ms and in
+ *  FFT units of a yardstick measured after them; the first transformation in full. */
+void firstInProcess(const Cloud::Ptr& source, const Cloud::Ptr& target, int threads,
+                    int reps, const pcl::phaser::PhaserParameters& params,
+                    bool range_only)
+{
+  pcl::PhaserRegistration<PointT, PointT> phaser;
+  phaser.setUseIntensity(!range_only);
+  phaser.setParameters(params);
+  phaser.setNumberOfThreads(threads);
+  phaser.setInputSource(source);
+  phaser.setInputTarget(target);
+  const Timed first = timedAlign(phaser);
+  const Eigen::Matrix4d transformation = phaser.getResult().transformation;
+  std::vector<Timed> fresh, cached;
+  for (int i = 0; i < reps; ++i) {
+    phaser.setInputTarget(target);
+    fresh.push_back(timedAlign(phaser));
+  }
+  for (int i = 0; i < reps; ++i)
+    cached.push_back(timedAlign(phaser));
+  const Timed f = median(fresh), c = median(cached);
+  const double unit = pcl::phaser::bench::fftYardstickMs();
+  std::printf(
+      "yardstick (measured after the aligns): one 128^3 r2c FFT (1 thread) = "
+      "%.2f ms\n\n| threads | first | next fresh | cached | first / next "
+      "fresh | page faults first / fresh / cached |\n|---|---|---|---|---|---|\n"
+      "| %d | %.1f ms / %.1f | %.1f ms / %.1f | %.1f ms / %.1f | %.2fx | %ld / "
+      "%ld / %ld |\n\nfirst transformation:",
+      unit, threads, first.ms, first.ms / unit, f.ms, f.ms / unit, c.ms, c.ms / unit,
+      first.ms / f.ms, first.faults, f.faults, c.faults);
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 4; ++k)
+      std::printf(" %.17g", transformation(r, k));
+  std::printf("\n");
+}
+
 bool loadPair(int argc, char** argv, Cloud::Ptr& source, Cloud::Ptr& target,
               std::string& name)
 {
@@ -148,6 +227,48 @@ bool loadPair(int argc, char** argv, Cloud::Ptr& source, Cloud::Ptr& target,
   return true;
 }
 
+/** -first: reads the pair, with -warm_up while pcl::phaser::warmUp runs on a thread,
+ *  then firstInProcess. */
+int firstAlignRun(int argc, char** argv, const pcl::phaser::PhaserParameters& params,
+                  int reps, bool range_only)
+{
+  pcl::phaser::WarmUpOptions options;
+  options.channels = range_only ? 0 : 1;
+  options.keep_memory = pcl::console::find_switch(argc, argv, "-keep_memory");
+  const bool warm = pcl::console::find_switch(argc, argv, "-warm_up");
+  double warm_ms = 0.0;
+  std::string warm_error;
+  const auto start = std::chrono::steady_clock::now();
+  std::thread warm_up;
+  if (warm)
+    warm_up = std::thread([&] {
+      warm_error = pcl::phaser::warmUp(params, options);
+      warm_ms = msSince(start);
+    });
+  Cloud::Ptr source, target;
+  std::string name;
+  const bool loaded = loadPair(argc, argv, source, target, name);
+  const double load_ms = msSince(start);
+  if (warm)
+    warm_up.join();
+  if (!loaded || !warm_error.empty()) {
+    pcl::console::print_error("%s\n", warm_error.c_str());
+    return 2;
+  }
+  std::printf("pair: %s (%zu -> %zu points), bandwidth %d, first align of the process, "
+              "then medians of %d\nreading the pair: %.1f ms; warm-up%s: %s\n",
+              name.c_str(), source->size(), target->size(), params.bandwidth, reps,
+              load_ms, options.keep_memory ? " (memory kept)" : "",
+              warm ? (std::to_string(warm_ms) +
+                      " ms, on a thread beside the reading, "
+                      "waited for " +
+                      std::to_string(std::max(0.0, warm_ms - load_ms)) + " ms")
+                         .c_str()
+                   : "none");
+  firstInProcess(source, target, params.num_threads, reps, params, range_only);
+  return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -166,6 +287,11 @@ int main(int argc, char** argv)
     pcl::console::print_error("repetitions must be >= 1, bandwidth in [1, 256] and "
                               "orientation candidates in [0, 20]\n");
     return 1;
+  }
+  int first_threads = 0;
+  if (pcl::console::parse_argument(argc, argv, "-first", first_threads) >= 0) {
+    params.num_threads = first_threads;
+    return firstAlignRun(argc, argv, params, reps, range_only);
   }
   Cloud::Ptr source, target;
   std::string name;
