@@ -6,11 +6,14 @@
 #include "batch_records.h"
 #include "batch_runner.h"
 
+#include <pcl_phaser/core/warm_up.h>
+
 #include <pcl/console/print.h>
 
 #include <chrono>
 #include <csignal>
 #include <map>
+#include <thread>
 #include <unistd.h>
 
 namespace pcl {
@@ -90,6 +93,25 @@ std::optional<Record> alignPair(const Pair& pair, std::size_t pairs, CloudCache&
   return alignedRecord(pair, pairs, outcome.result, outcome.covariance, ms);
 }
 
+/** \brief The engine's first align of a process touches its memory anew (most of what
+ *  it costs beyond the next fresh align: doc/benchmarks.md): warm it up on a thread
+ *  while the first pair is read, and keep the memory of one align for the next. */
+std::thread startWarmUp(const PhaserParameters& params)
+{
+  WarmUpOptions options;
+  options.keep_memory = true;
+  return std::thread([params, options] { warmUp(params, options); });
+}
+
+/** \brief Read the first pair's clouds, then wait for the warm-up. */
+void finishWarmUp(std::thread& warm_up, const Pair& first, CloudCache& cache)
+{
+  std::string ignored; // a load that fails is reported with its pair
+  cache.get(first.target_path, ignored);
+  cache.get(first.source_path, ignored);
+  warm_up.join();
+}
+
 int writeGraph(const RunSettings& settings, const PairList& list)
 {
   if (settings.g2o.empty())
@@ -125,7 +147,10 @@ int runBatch(const PairList& list, const RunSettings& settings)
   CloudCache cache(static_cast<std::size_t>(settings.cache));
   Progress progress(shard.size(), shard.size() - pending.size(),
                     countAccepted(records));
+  std::thread warm_up = pending.empty() ? std::thread() : startWarmUp(settings.params);
   for (const std::size_t i : pending) {
+    if (warm_up.joinable())
+      finishWarmUp(warm_up, list.pairs[i], cache);
     if (stop_requested)
       break;
     const std::optional<Record> record =
