@@ -55,6 +55,9 @@ struct RevisitOptions {
   unsigned seed = 1;
   double voxel = 1.0; ///< leaf of PCL's methods, as for the compare study's LiDAR
   double source_wedge = 1.0; ///< azimuth share of each source kept (-source-wedge)
+  /** -reference-drift: linear odometry drift (world, m per scan index) removed from
+   *  the reference poses (correctDrift()); empty: none */
+  std::vector<double> drift;
   std::string csv, markdown, plots;
 };
 
@@ -64,7 +67,9 @@ struct RevisitTrial {
   RevisitPair pair;
   double rre = 0.0, rte = 0.0, ms = 0.0, score = 0.0, overlap_est = 0.0;
   bool converged = false;
+  Eigen::Matrix4d estimate = Eigen::Matrix4d::Identity(); ///< T_target_source
   VerificationFigures verification; ///< pcl_phaser's (NaN for others)
+  NeesFigures nees; ///< of a converged trial with a covariance (pcl_phaser's)
 
   bool successA() const { return rre < kRreThreshold && rte < kRteThresholdA; }
   bool successB() const { return rre < kRreThreshold && rte < kRteThresholdB; }
@@ -114,6 +119,10 @@ bool parseRevisitOptions(int argc, char** argv, RevisitOptions& o)
   console::parse_argument(argc, argv, "-csv", o.csv);
   console::parse_argument(argc, argv, "-md", o.markdown);
   console::parse_argument(argc, argv, "-plots", o.plots);
+  std::string drift;
+  if (console::parse_argument(argc, argv, "-reference-drift", drift) >= 0)
+    for (const std::string& v : splitList(drift))
+      o.drift.push_back(std::strtod(v.c_str(), nullptr));
   bool ok = true;
   auto fail = [&](const std::string& what) {
     console::print_error("Invalid option: %s\n", what.c_str());
@@ -138,6 +147,10 @@ bool parseRevisitOptions(int argc, char** argv, RevisitOptions& o)
     fail("-fpcs_time");
   if (o.orientation_candidates > 20)
     fail("-orientation_candidates");
+  if (!o.drift.empty() &&
+      (o.drift.size() != 3 ||
+       !Eigen::Vector3d(o.drift[0], o.drift[1], o.drift[2]).allFinite()))
+    fail("-reference-drift: three finite numbers DX,DY,DZ");
   return ok;
 }
 
@@ -182,11 +195,12 @@ void writeCsvRow(std::ostream& out, const RevisitTrial& t)
   std::snprintf(
       line, sizeof(line),
       "%s,%s,%s,%g,%g,%g,%.6f,%.6f,%d,%.3f,%.6g,%.6g,%.4g,%.4g,%.4g,%.4g,%.4g,"
-      "%.4g,%.4g\n",
+      "%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g\n",
       t.method.c_str(), t.pair.source.c_str(), t.pair.target.c_str(), t.pair.dist,
       t.pair.rel_rot, t.pair.overlap, t.rre, t.rte, t.converged ? 1 : 0, t.ms, t.score,
       t.overlap_est, v.inliers, v.free_space, v.reverse_free_space, v.constraint,
-      v.rank, v.runner_up_rank, v.runner_up_error);
+      v.rank, v.runner_up_rank, v.runner_up_error, t.nees.nees, t.nees.nees_rot,
+      t.nees.nees_trans, t.nees.sigma_rot_deg, t.nees.sigma_trans_m);
   out << line << std::flush; // a long run can be read while it goes
 }
 
@@ -244,11 +258,14 @@ std::vector<RevisitTrial> runTrials(const RevisitOptions& o, const std::string& 
       t.overlap_est = r.overlap;
       t.verification = r.verification;
       t.converged = r.converged;
+      t.estimate = r.transformation;
+      t.nees = neesOf(r, pair.truth);
       std::fprintf(stderr,
                    "[%zu/%zu] %s -> %s (%.2f m) %-12s RRE %7.2f deg  RTE %7.3f m  "
-                   "converged %d  %8.0f ms\n",
+                   "converged %d  %8.0f ms  NEES %.2f (rot. %.2f, trans. %.2f)\n",
                    i + 1, pairs.size(), pair.source.c_str(), pair.target.c_str(),
-                   pair.dist, name.c_str(), t.rre, t.rte, t.converged ? 1 : 0, t.ms);
+                   pair.dist, name.c_str(), t.rre, t.rte, t.converged ? 1 : 0, t.ms,
+                   t.nees.nees, t.nees.nees_rot, t.nees.nees_trans);
       if (csv)
         writeCsvRow(*csv, t);
       trials.push_back(t);
@@ -320,6 +337,82 @@ void writeTable(std::ostream& out, const std::vector<RevisitTrial>& trials,
     }
 }
 
+/** Chi-square 95 % points: 6 dof (the 6-D error) and 3 dof (one block). */
+constexpr double kChi2Six95 = 12.5916;
+constexpr double kChi2Three95 = 7.8147;
+
+/** How the covariance of the converged trials of one method and bin covers their
+ *  errors. */
+struct NeesSummary {
+  int n = 0, inside = 0, inside_rot = 0, inside_trans = 0;
+  double mean = NAN, median = NAN, mean_rot = NAN, mean_trans = NAN;
+  double rms_rre = NAN, rms_rte = NAN, sigma_rot = NAN, sigma_trans = NAN;
+};
+
+NeesSummary summarizeNees(const std::vector<RevisitTrial>& trials,
+                          const std::string& method, const Bin& bin)
+{
+  NeesSummary s;
+  std::vector<double> nees, sigma_rot, sigma_trans;
+  double rot = 0.0, trans = 0.0, rre2 = 0.0, rte2 = 0.0;
+  for (const RevisitTrial& t : trials) {
+    if (t.method != method || t.pair.dist < bin.lo || t.pair.dist >= bin.hi ||
+        !t.converged || t.nees.nees < 0.0)
+      continue;
+    ++s.n;
+    nees.push_back(t.nees.nees);
+    s.inside += t.nees.nees <= kChi2Six95;
+    s.inside_rot += t.nees.nees_rot >= 0.0 && t.nees.nees_rot <= kChi2Three95;
+    s.inside_trans += t.nees.nees_trans >= 0.0 && t.nees.nees_trans <= kChi2Three95;
+    rot += t.nees.nees_rot;
+    trans += t.nees.nees_trans;
+    rre2 += t.rre * t.rre;
+    rte2 += t.rte * t.rte;
+    sigma_rot.push_back(t.nees.sigma_rot_deg);
+    sigma_trans.push_back(t.nees.sigma_trans_m);
+  }
+  if (s.n == 0)
+    return s;
+  double sum = 0.0;
+  for (double v : nees)
+    sum += v;
+  s.mean = sum / s.n;
+  s.median = median(nees);
+  s.mean_rot = rot / s.n;
+  s.mean_trans = trans / s.n;
+  s.rms_rre = std::sqrt(rre2 / s.n);
+  s.rms_rte = std::sqrt(rte2 / s.n);
+  s.sigma_rot = median(sigma_rot);
+  s.sigma_trans = median(sigma_trans);
+  return s;
+}
+
+/** The covariance's calibration per method (those with one) and distance bin. */
+void writeNeesTable(std::ostream& out, const std::vector<RevisitTrial>& trials,
+                    const std::vector<std::string>& methods)
+{
+  out << "\n| method | distance | converged with covariance | mean NEES (6) | median "
+         "NEES | inside 95 % (6-D, 12.59) | inside 95 % rot. / trans. (3-D, 7.81) | "
+         "mean NEES rot. / trans. (3) | RMS RRE (deg) | RMS RTE (m) | median "
+         "sigma_rot (deg) | median sigma_trans (m) |\n"
+         "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const std::string& method : methods)
+    for (const Bin& bin : bins()) {
+      const NeesSummary s = summarizeNees(trials, method, bin);
+      if (s.n == 0)
+        continue;
+      const auto share = [&](int k) { return formatValue("%.1f %%", 100.0 * k / s.n); };
+      out << "| " << method << " | " << bin.label << " | " << s.n << " | "
+          << formatValue("%.2f", s.mean) << " | " << formatValue("%.2f", s.median)
+          << " | " << share(s.inside) << " | " << share(s.inside_rot) << " / "
+          << share(s.inside_trans) << " | " << formatValue("%.2f", s.mean_rot) << " / "
+          << formatValue("%.2f", s.mean_trans) << " | "
+          << formatValue("%.3f", s.rms_rre) << " | " << formatValue("%.3f", s.rms_rte)
+          << " | " << formatValue("%.3f", s.sigma_rot) << " | "
+          << formatValue("%.3f", s.sigma_trans) << " |\n";
+    }
+}
+
 /** DIR/revisits_success.{dat,gp} and, with gnuplot, the PNG; returns the PNG or "". */
 std::string writePlot(const std::string& dir, const std::vector<RevisitTrial>& trials,
                       const std::vector<std::string>& methods)
@@ -361,9 +454,52 @@ std::string writePlot(const std::string& dir, const std::vector<RevisitTrial>& t
   return std::system(("gnuplot '" + base + ".gp'").c_str()) == 0 ? base + ".png" : "";
 }
 
+/** The reference poses of \a pairs corrected for the drift of -reference-drift; false
+ *  (with a message) when a pair's scans have no pose. */
+bool correctReferences(const RevisitOptions& o, const std::vector<ScanPose>& poses,
+                       std::vector<RevisitPair>& pairs, std::string& origin)
+{
+  const Eigen::Vector3d drift(o.drift[0], o.drift[1], o.drift[2]);
+  for (RevisitPair& pair : pairs)
+    if (!correctDrift(pair, poses, drift)) {
+      console::print_error("revisits: no odometry pose for %s -> %s\n",
+                           pair.source.c_str(), pair.target.c_str());
+      return false;
+    }
+  origin += "; reference poses corrected for a linear odometry drift of (" +
+            formatValue("%.4g", drift.x()) + ", " + formatValue("%.4g", drift.y()) +
+            ", " + formatValue("%.4g", drift.z()) + ") m per scan index";
+  return true;
+}
+
+/** "Odometry drift fitted ..." for the converged trials of \a method (fitDrift()). */
+std::string driftLine(const std::vector<RevisitTrial>& trials,
+                      const std::string& method, const std::vector<ScanPose>& poses)
+{
+  std::vector<RevisitPair> pairs;
+  std::vector<Eigen::Matrix4d> estimates;
+  for (const RevisitTrial& t : trials)
+    if (t.method == method && t.converged) {
+      pairs.push_back(t.pair);
+      estimates.push_back(t.estimate);
+    }
+  if (pairs.empty() || poses.empty())
+    return "";
+  const Eigen::Vector3d d = fitDrift(pairs, estimates, poses);
+  return "Linear odometry drift of the reference poses that best explains the "
+         "translation errors of the " +
+         std::to_string(pairs.size()) + " converged " + method +
+         " trials (fitDrift(), world frame): (" + formatValue("%.4g", d.x()) + ", " +
+         formatValue("%.4g", d.y()) + ", " + formatValue("%.4g", d.z()) +
+         ") m per scan index, " + formatValue("%.3f", 174.0 * d.norm()) +
+         " m over scans 0-174 (pass it as -reference-drift DX,DY,DZ to judge against "
+         "corrected references).\n";
+}
+
 void writeReport(std::ostream& md, int argc, char** argv,
                  const std::vector<RevisitTrial>& trials, const RevisitOptions& o,
-                 const std::string& origin, double fft_ms)
+                 const std::string& origin, double fft_ms,
+                 const std::vector<ScanPose>& poses)
 {
   std::ostringstream command;
   for (int i = 0; i < argc; ++i)
@@ -377,6 +513,14 @@ void writeReport(std::ostream& md, int argc, char** argv,
      << "Yardstick: one 128^3 real-to-complex FFT (FFTW_MEASURE, 1 thread) = "
      << formatValue("%.2f", fft_ms) << " ms (FFT128).\n\n";
   writeTable(md, trials, o.methods, fft_ms);
+  md << "\nCovariance (getCovariance()) of the converged trials: NEES of the 6-D error "
+        "(omega = Log(R_true R_est^T), nu = t_true - t_est) and of each block against "
+        "the reference poses, which are LiDAR-inertial odometry (about a centimeter "
+        "and a fraction of a degree of their own error).\n";
+  writeNeesTable(md, trials, o.methods);
+  const std::string drift = driftLine(trials, o.methods.front(), poses);
+  if (!drift.empty())
+    md << "\n" << drift;
 }
 
 } // namespace
@@ -413,7 +557,10 @@ void printRevisitsHelp(const char* program)
       "                   (default: the library's, 10)\n"
       "  -csv FILE        every trial as CSV\n"
       "  -md FILE         the markdown summary (default: stdout)\n"
-      "  -plots DIR       revisits_success.{dat,gp,png} (PNG with gnuplot)\n",
+      "  -plots DIR       revisits_success.{dat,gp,png} (PNG with gnuplot)\n"
+      "  -reference-drift DX,DY,DZ  remove a linear drift of the odometry (world\n"
+      "                   frame, m per scan index: scan i's position - i x drift)\n"
+      "                   from the reference poses (the report fits one)\n",
       program, kFolder, PCL_PHASER_DEFAULT_DATA_DIR, kFolder, kFolder);
 }
 
@@ -445,6 +592,14 @@ int runRevisitsStudy(int argc, char** argv)
   std::string origin;
   if (!loadPairs(o, pairs_file, poses_file, pairs, origin))
     return 1;
+  std::vector<ScanPose> poses; // for the drift correction and fit, if present
+  std::string error;
+  if (std::filesystem::exists(poses_file) && !readScanPoses(poses_file, poses, error)) {
+    console::print_error("revisits: %s\n", error.c_str());
+    return 1;
+  }
+  if (!o.drift.empty() && !correctReferences(o, poses, pairs, origin))
+    return 1;
   if (o.max_pairs > 0 && pairs.size() > static_cast<std::size_t>(o.max_pairs))
     pairs.resize(static_cast<std::size_t>(o.max_pairs));
   const double fft_ms = fftYardstickMs();
@@ -455,14 +610,15 @@ int runRevisitsStudy(int argc, char** argv)
     csv = std::make_unique<std::ofstream>(o.csv);
     *csv << "method,source,target,dist,rel_rot,overlap,rre,rte,converged,ms,score,"
             "overlap_est,inliers,free_space,reverse_free_space,constraint,rank,"
-            "runner_up_rank,runner_up_error\n";
+            "runner_up_rank,runner_up_error,nees,nees_rot,nees_trans,sigma_rot_deg,"
+            "sigma_trans_m\n";
   }
   const std::vector<RevisitTrial> trials = runTrials(o, folder, pairs, csv.get());
   std::ofstream md_file;
   if (!o.markdown.empty())
     md_file.open(o.markdown);
   writeReport(o.markdown.empty() ? std::cout : md_file, argc, argv, trials, o, origin,
-              fft_ms);
+              fft_ms, poses);
   if (!o.plots.empty()) {
     const std::string png = writePlot(o.plots, trials, o.methods);
     if (!png.empty())
