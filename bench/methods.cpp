@@ -9,6 +9,11 @@
 #include <pcl/filters/filter.h>
 #include <pcl/filters/voxel_grid.h>
 
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+
+#include <cmath>
+
 namespace pcl::phaser {
 namespace bench {
 
@@ -51,6 +56,43 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr downsampleXYZ(const Cloud& cloud, double vox
   grid.setInputCloud(xyz);
   grid.filter(*out);
   return out;
+}
+
+namespace {
+
+/** e^T C^-1 e, or -1 when C is not positive definite. */
+template <int N>
+double mahalanobis(const Eigen::Matrix<double, N, 1>& e,
+                   const Eigen::Matrix<double, N, N>& C)
+{
+  const Eigen::LDLT<Eigen::Matrix<double, N, N>> ldlt(C);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() ||
+      !(ldlt.vectorD().minCoeff() > 0.0))
+    return -1.0;
+  return e.dot(ldlt.solve(e));
+}
+
+} // namespace
+
+NeesFigures neesOf(const MethodResult& r, const Eigen::Matrix4d& truth)
+{
+  NeesFigures f;
+  if (!r.has_covariance)
+    return f;
+  Eigen::Matrix<double, 6, 1> e;
+  const Eigen::AngleAxisd omega(
+      Eigen::Matrix3d(truth.topLeftCorner<3, 3>() *
+                      r.transformation.topLeftCorner<3, 3>().transpose()));
+  e.head<3>() = omega.angle() * omega.axis();
+  e.tail<3>() = truth.topRightCorner<3, 1>() - r.transformation.topRightCorner<3, 1>();
+  const Eigen::Matrix3d rot = r.covariance.topLeftCorner<3, 3>();
+  const Eigen::Matrix3d trans = r.covariance.bottomRightCorner<3, 3>();
+  f.nees = mahalanobis<6>(e, r.covariance);
+  f.nees_rot = mahalanobis<3>(Eigen::Vector3d(e.head<3>()), rot);
+  f.nees_trans = mahalanobis<3>(Eigen::Vector3d(e.tail<3>()), trans);
+  f.sigma_rot_deg = std::sqrt(rot.trace()) * 180.0 / M_PI;
+  f.sigma_trans_m = std::sqrt(trans.trace());
+  return f;
 }
 
 double elapsedMs(std::chrono::steady_clock::time_point start)

@@ -64,6 +64,23 @@ struct MethodResult {
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
+/** \brief How a method's covariance covers its pose error, -1 (and sigmas 0) without a
+ * covariance or when a block is not positive definite. The error is ordered as
+ * pcl::phaser::poseCovariance orders it: omega = Log(R_true R_est^T) [rad], then nu =
+ * t_true - t_est [m]. Chi-square: 6 dof for the 6-D NEES (mean 6, 95 % below 12.59), 3
+ * dof for each block (mean 3, 95 % below 7.81). */
+struct NeesFigures {
+  double nees = -1.0;         ///< 6-D
+  double nees_rot = -1.0;     ///< the rotation error under the rotation block
+  double nees_trans = -1.0;   ///< the translation error under the translation block
+  double sigma_rot_deg = 0.0; ///< sqrt(trace) of the rotation block
+  double sigma_trans_m = 0.0; ///< sqrt(trace) of the translation block
+};
+
+/** \brief The NEES of \a r's pose against \a truth (T_target_source) under
+ * r.covariance; all -1 when r.has_covariance is false. */
+NeesFigures neesOf(const MethodResult& r, const Eigen::Matrix4d& truth);
+
 using MethodFunction =
     std::function<MethodResult(const Cloud::ConstPtr& source,
                                const Cloud::ConstPtr& target, const MethodSettings&)>;

@@ -274,26 +274,12 @@ private:
     trial.overlap = r.overlap;
     trial.verification = r.verification;
     if (r.has_covariance) {
-      // The error as getCovariance() orders it: omega = Log(R_true R_est^T), nu =
-      // t_true
-      // - t_est.
-      Eigen::Matrix<double, 6, 1> e;
-      const Eigen::AngleAxisd omega(
-          Eigen::Matrix3d(truth.topLeftCorner<3, 3>() *
-                          r.transformation.topLeftCorner<3, 3>().transpose()));
-      e.head<3>() = omega.angle() * omega.axis();
-      e.tail<3>() =
-          truth.topRightCorner<3, 1>() - r.transformation.topRightCorner<3, 1>();
-      const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(r.covariance);
-      if (ldlt.info() == Eigen::Success && ldlt.isPositive())
-        trial.nees = e.dot(ldlt.solve(e));
-      const Eigen::Vector3d er = e.head<3>(), et = e.tail<3>();
-      trial.nees_rot = er.dot(r.covariance.topLeftCorner<3, 3>().ldlt().solve(er));
-      trial.nees_trans =
-          et.dot(r.covariance.bottomRightCorner<3, 3>().ldlt().solve(et));
-      trial.sigma_rot_deg =
-          std::sqrt(r.covariance.topLeftCorner<3, 3>().trace()) * 180.0 / M_PI;
-      trial.sigma_trans_m = std::sqrt(r.covariance.bottomRightCorner<3, 3>().trace());
+      const NeesFigures f = neesOf(r, truth);
+      trial.nees = f.nees;
+      trial.nees_rot = f.nees_rot;
+      trial.nees_trans = f.nees_trans;
+      trial.sigma_rot_deg = f.sigma_rot_deg;
+      trial.sigma_trans_m = f.sigma_trans_m;
     }
     trials_.push_back(trial);
   }

@@ -15,6 +15,7 @@
 #include "protocol.h"
 #include "report.h"
 #include "revisits.h"
+#include "revisits_calibration.h"
 
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
@@ -40,9 +41,6 @@ namespace {
 
 namespace console = pcl::console;
 
-constexpr double kRreThreshold = 5.0;  ///< deg, both success levels
-constexpr double kRteThresholdA = 2.0; ///< m, loop-closure level
-constexpr double kRteThresholdB = 0.6; ///< m, the benchmark's usual level
 const char* const kFolder = "lidar/balm_handheld";
 
 struct RevisitOptions {
@@ -55,36 +53,12 @@ struct RevisitOptions {
   unsigned seed = 1;
   double voxel = 1.0; ///< leaf of PCL's methods, as for the compare study's LiDAR
   double source_wedge = 1.0; ///< azimuth share of each source kept (-source-wedge)
+  /** -reference-drift: linear odometry drift (world, m per scan index) removed from
+   *  the reference poses (correctDrift()); empty: none */
+  std::vector<double> drift;
   std::string csv, markdown, plots;
 };
 
-/** One method on one pair. */
-struct RevisitTrial {
-  std::string method;
-  RevisitPair pair;
-  double rre = 0.0, rte = 0.0, ms = 0.0, score = 0.0, overlap_est = 0.0;
-  bool converged = false;
-  VerificationFigures verification; ///< pcl_phaser's (NaN for others)
-
-  bool successA() const { return rre < kRreThreshold && rte < kRteThresholdA; }
-  bool successB() const { return rre < kRreThreshold && rte < kRteThresholdB; }
-};
-
-/** A range of the distance between the scans, [lo, hi). */
-struct Bin {
-  std::string label;
-  double lo, hi;
-};
-
-const std::vector<Bin>& bins()
-{
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  static const std::vector<Bin> all = {
-      {"[0, 5) m", 0.0, 5.0},     {"[5, 10) m", 5.0, 10.0}, {"[10, 15) m", 10.0, 15.0},
-      {"[15, inf) m", 15.0, inf}, {"<10 m", 0.0, 10.0},     {">=10 m", 10.0, inf},
-      {"all", 0.0, inf}};
-  return all;
-}
 constexpr std::size_t kDisjointBins = 4; ///< the first bins() partition the distances
 
 const Method* findMethod(const std::string& name)
@@ -114,6 +88,10 @@ bool parseRevisitOptions(int argc, char** argv, RevisitOptions& o)
   console::parse_argument(argc, argv, "-csv", o.csv);
   console::parse_argument(argc, argv, "-md", o.markdown);
   console::parse_argument(argc, argv, "-plots", o.plots);
+  std::string drift;
+  if (console::parse_argument(argc, argv, "-reference-drift", drift) >= 0)
+    for (const std::string& v : splitList(drift))
+      o.drift.push_back(std::strtod(v.c_str(), nullptr));
   bool ok = true;
   auto fail = [&](const std::string& what) {
     console::print_error("Invalid option: %s\n", what.c_str());
@@ -138,6 +116,10 @@ bool parseRevisitOptions(int argc, char** argv, RevisitOptions& o)
     fail("-fpcs_time");
   if (o.orientation_candidates > 20)
     fail("-orientation_candidates");
+  if (!o.drift.empty() &&
+      (o.drift.size() != 3 ||
+       !Eigen::Vector3d(o.drift[0], o.drift[1], o.drift[2]).allFinite()))
+    fail("-reference-drift: three finite numbers DX,DY,DZ");
   return ok;
 }
 
@@ -182,11 +164,12 @@ void writeCsvRow(std::ostream& out, const RevisitTrial& t)
   std::snprintf(
       line, sizeof(line),
       "%s,%s,%s,%g,%g,%g,%.6f,%.6f,%d,%.3f,%.6g,%.6g,%.4g,%.4g,%.4g,%.4g,%.4g,"
-      "%.4g,%.4g\n",
+      "%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g\n",
       t.method.c_str(), t.pair.source.c_str(), t.pair.target.c_str(), t.pair.dist,
       t.pair.rel_rot, t.pair.overlap, t.rre, t.rte, t.converged ? 1 : 0, t.ms, t.score,
       t.overlap_est, v.inliers, v.free_space, v.reverse_free_space, v.constraint,
-      v.rank, v.runner_up_rank, v.runner_up_error);
+      v.rank, v.runner_up_rank, v.runner_up_error, t.nees.nees, t.nees.nees_rot,
+      t.nees.nees_trans, t.nees.sigma_rot_deg, t.nees.sigma_trans_m);
   out << line << std::flush; // a long run can be read while it goes
 }
 
@@ -244,11 +227,14 @@ std::vector<RevisitTrial> runTrials(const RevisitOptions& o, const std::string& 
       t.overlap_est = r.overlap;
       t.verification = r.verification;
       t.converged = r.converged;
+      t.estimate = r.transformation;
+      t.nees = neesOf(r, pair.truth);
       std::fprintf(stderr,
                    "[%zu/%zu] %s -> %s (%.2f m) %-12s RRE %7.2f deg  RTE %7.3f m  "
-                   "converged %d  %8.0f ms\n",
+                   "converged %d  %8.0f ms  NEES %.2f (rot. %.2f, trans. %.2f)\n",
                    i + 1, pairs.size(), pair.source.c_str(), pair.target.c_str(),
-                   pair.dist, name.c_str(), t.rre, t.rte, t.converged ? 1 : 0, t.ms);
+                   pair.dist, name.c_str(), t.rre, t.rte, t.converged ? 1 : 0, t.ms,
+                   t.nees.nees, t.nees.nees_rot, t.nees.nees_trans);
       if (csv)
         writeCsvRow(*csv, t);
       trials.push_back(t);
@@ -363,7 +349,8 @@ std::string writePlot(const std::string& dir, const std::vector<RevisitTrial>& t
 
 void writeReport(std::ostream& md, int argc, char** argv,
                  const std::vector<RevisitTrial>& trials, const RevisitOptions& o,
-                 const std::string& origin, double fft_ms)
+                 const std::string& origin, double fft_ms,
+                 const std::vector<ScanPose>& poses)
 {
   std::ostringstream command;
   for (int i = 0; i < argc; ++i)
@@ -377,6 +364,14 @@ void writeReport(std::ostream& md, int argc, char** argv,
      << "Yardstick: one 128^3 real-to-complex FFT (FFTW_MEASURE, 1 thread) = "
      << formatValue("%.2f", fft_ms) << " ms (FFT128).\n\n";
   writeTable(md, trials, o.methods, fft_ms);
+  md << "\nCovariance (getCovariance()) of the converged trials: NEES of the 6-D error "
+        "(omega = Log(R_true R_est^T), nu = t_true - t_est) and of each block against "
+        "the reference poses, which are LiDAR-inertial odometry (about a centimeter "
+        "and a fraction of a degree of their own error).\n";
+  writeNeesTable(md, trials, o.methods);
+  const std::string drift = driftLine(trials, o.methods.front(), poses);
+  if (!drift.empty())
+    md << "\n" << drift;
 }
 
 } // namespace
@@ -413,7 +408,10 @@ void printRevisitsHelp(const char* program)
       "                   (default: the library's, 10)\n"
       "  -csv FILE        every trial as CSV\n"
       "  -md FILE         the markdown summary (default: stdout)\n"
-      "  -plots DIR       revisits_success.{dat,gp,png} (PNG with gnuplot)\n",
+      "  -plots DIR       revisits_success.{dat,gp,png} (PNG with gnuplot)\n"
+      "  -reference-drift DX,DY,DZ  remove a linear drift of the odometry (world\n"
+      "                   frame, m per scan index: scan i's position - i x drift)\n"
+      "                   from the reference poses (the report fits one)\n",
       program, kFolder, PCL_PHASER_DEFAULT_DATA_DIR, kFolder, kFolder);
 }
 
@@ -445,6 +443,16 @@ int runRevisitsStudy(int argc, char** argv)
   std::string origin;
   if (!loadPairs(o, pairs_file, poses_file, pairs, origin))
     return 1;
+  std::vector<ScanPose> poses; // for the drift correction and fit, if present
+  std::string error;
+  if (std::filesystem::exists(poses_file) && !readScanPoses(poses_file, poses, error)) {
+    console::print_error("revisits: %s\n", error.c_str());
+    return 1;
+  }
+  if (!o.drift.empty() &&
+      !correctReferences(Eigen::Vector3d(o.drift[0], o.drift[1], o.drift[2]), poses,
+                         pairs, origin))
+    return 1;
   if (o.max_pairs > 0 && pairs.size() > static_cast<std::size_t>(o.max_pairs))
     pairs.resize(static_cast<std::size_t>(o.max_pairs));
   const double fft_ms = fftYardstickMs();
@@ -455,14 +463,15 @@ int runRevisitsStudy(int argc, char** argv)
     csv = std::make_unique<std::ofstream>(o.csv);
     *csv << "method,source,target,dist,rel_rot,overlap,rre,rte,converged,ms,score,"
             "overlap_est,inliers,free_space,reverse_free_space,constraint,rank,"
-            "runner_up_rank,runner_up_error\n";
+            "runner_up_rank,runner_up_error,nees,nees_rot,nees_trans,sigma_rot_deg,"
+            "sigma_trans_m\n";
   }
   const std::vector<RevisitTrial> trials = runTrials(o, folder, pairs, csv.get());
   std::ofstream md_file;
   if (!o.markdown.empty())
     md_file.open(o.markdown);
   writeReport(o.markdown.empty() ? std::cout : md_file, argc, argv, trials, o, origin,
-              fft_ms);
+              fft_ms, poses);
   if (!o.plots.empty()) {
     const std::string png = writePlot(o.plots, trials, o.methods);
     if (!png.empty())

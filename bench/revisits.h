@@ -244,5 +244,67 @@ inline std::vector<RevisitPair> derivePairs(const std::vector<ScanPose>& poses,
   return chosen;
 }
 
+/** \brief The scan index i of a file name "full<i>.pcd" (any folder), or -1. */
+inline int scanIndex(const std::string& name)
+{
+  const std::string file = std::filesystem::path(name).filename().string();
+  if (file.size() < 9 || file.compare(0, 4, "full") != 0 ||
+      file.compare(file.size() - 4, 4, ".pcd") != 0)
+    return -1;
+  const std::string digits = file.substr(4, file.size() - 8);
+  if (digits.find_first_not_of("0123456789") != std::string::npos)
+    return -1;
+  return std::stoi(digits);
+}
+
+/** \brief The world pose of scan \a index in \a poses, or null. */
+inline const ScanPose* findScanPose(const std::vector<ScanPose>& poses, int index)
+{
+  for (const ScanPose& p : poses)
+    if (p.index == index)
+      return &p;
+  return nullptr;
+}
+
+/** \brief T_target_source of \a pair from odometry poses whose position drifted
+ * linearly with the scan index: the corrected position of scan i is p_i - i \a drift
+ * (world frame, meters per scan index), so the reference translation becomes
+ * t - (i_source - i_target) R_target^T drift. \a pair.truth unchanged when a scan
+ * index or pose is missing (false). */
+inline bool correctDrift(RevisitPair& pair, const std::vector<ScanPose>& poses,
+                         const Eigen::Vector3d& drift)
+{
+  const int i = scanIndex(pair.source), j = scanIndex(pair.target);
+  const ScanPose* target = findScanPose(poses, j);
+  if (i < 0 || !target)
+    return false;
+  const Eigen::Matrix3d R_target = target->world_lidar.topLeftCorner<3, 3>();
+  pair.truth.topRightCorner<3, 1>() -= (i - j) * (R_target.transpose() * drift);
+  return true;
+}
+
+/** \brief Least-squares linear drift (as correctDrift) of the odometry from the
+ * translation errors of estimates: minimizes the sum over the pairs of |t_ref - (i -
+ * j) R_target^T d - t_est|^2, d = sum (i - j) R_target (t_ref - t_est) / sum (i -
+ * j)^2. \a estimates[k] is T_target_source of pairs[k]; zero without usable pairs. */
+inline Eigen::Vector3d fitDrift(const std::vector<RevisitPair>& pairs,
+                                const std::vector<Eigen::Matrix4d>& estimates,
+                                const std::vector<ScanPose>& poses)
+{
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double norm = 0.0;
+  for (std::size_t k = 0; k < pairs.size() && k < estimates.size(); ++k) {
+    const int i = scanIndex(pairs[k].source), j = scanIndex(pairs[k].target);
+    const ScanPose* target = findScanPose(poses, j);
+    if (i < 0 || !target)
+      continue;
+    const Eigen::Vector3d error =
+        pairs[k].truth.topRightCorner<3, 1>() - estimates[k].topRightCorner<3, 1>();
+    sum += (i - j) * (target->world_lidar.topLeftCorner<3, 3>() * error);
+    norm += static_cast<double>(i - j) * (i - j);
+  }
+  return norm > 0.0 ? Eigen::Vector3d(sum / norm) : Eigen::Vector3d::Zero();
+}
+
 } // namespace bench
 } // namespace pcl::phaser

@@ -155,6 +155,25 @@ Eigen::Matrix4d callerFrame(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
   return T * guess;
 }
 
+/** [a]x, the cross-product matrix of \a a. */
+Eigen::Matrix3d skew(const Eigen::Vector3d& a)
+{
+  Eigen::Matrix3d m;
+  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  return m;
+}
+
+/** \a cov (fitCovariance's error about the target's projection center: q -> Exp(omega)
+ *  q + nu0) for the caller's error omega, nu = t_true - t_est, the estimate's
+ *  translation being \a a from that center: nu = nu0 + omega x a. */
+Eigen::Matrix<double, 6, 6> aboutTranslation(const Eigen::Matrix<double, 6, 6>& cov,
+                                             const Eigen::Vector3d& a)
+{
+  Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Identity();
+  A.bottomLeftCorner<3, 3>() = -skew(a);
+  return A * cov * A.transpose();
+}
+
 /** Converged means verified: the final pose puts enough source samples on the target
  *  and, about sensor origins, few in space the target saw through. About centroids (no
  *  free-space test) a distinct translation peak is also required; scans taken meters
@@ -201,6 +220,8 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
   if (!r.transformation.allFinite())
     throw InvalidArgument("the estimate is not finite");
   r.lever_arm = r.rotation * source_center;
+  r.fit_covariance = aboutTranslation(
+      r.fit_covariance, r.transformation.topRightCorner<3, 1>() - target_center);
   for (RotationHypothesis& h : r.hypotheses)
     h.transformation =
         callerFrame(h.rotation, h.translation, source_center, target_center, guess);
@@ -252,12 +273,12 @@ Eigen::Matrix<double, 6, 6> poseCovariance(const PhaserResult& result,
   Eigen::Matrix<double, 6, 6> cov = Eigen::Matrix<double, 6, 6>::Zero();
   if (!result.converged)
     return cov;
+  if (!result.fit_covariance.isZero())
+    return result.fit_covariance;
   const Eigen::Matrix3d rot = rotationCovariance(rotation, bandwidth);
   // t_est = c_t + delta - R c_s, R_true = Exp(omega) R_est: nu = d_delta + [R c_s]x
   // omega.
-  const Eigen::Vector3d& a = result.lever_arm;
-  Eigen::Matrix3d lever;
-  lever << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  const Eigen::Matrix3d lever = skew(result.lever_arm);
   cov.topLeftCorner<3, 3>() = rot;
   cov.topRightCorner<3, 3>() = rot * lever.transpose();
   cov.bottomLeftCorner<3, 3>() = lever * rot;

@@ -12,6 +12,7 @@
 #include <pcl_phaser/core/error.h>
 #include <pcl_phaser/core/peak_neighborhood.h>
 #include <pcl_phaser/core/pipeline.h>
+#include <pcl_phaser/core/pose_covariance.h>
 #include <pcl_phaser/core/pose_refinement.h>
 #include <pcl_phaser/core/so3_correlation.h>
 #include <pcl_phaser/core/so3_refinement.h>
@@ -290,8 +291,8 @@ struct Distinctness {
 Distinctness standsOut(const SourceContext& s, const Pose& pose,
                        const std::vector<RotationHypothesis>& hypotheses);
 
-/** The final \a pose and its verification figures into \a e, and whether it is
- *  verified (pipeline_verdict.cpp). */
+/** The final \a pose, its verification figures and its covariance (fitCovariance) into
+ *  \a e, and whether it is verified (pipeline_verdict.cpp). */
 void verdict(const SourceContext& s, const Pose& pose, PhaserResult& e);
 
 /** The final refinement, shift, uncertainty and verification decision, into \a e. */

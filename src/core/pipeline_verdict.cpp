@@ -138,6 +138,17 @@ Distinctness standsOut(const SourceContext& s, const Pose& pose,
   return d;
 }
 
+/** The covariance of the final \a pose from its own point-to-plane fit into \a e
+ *  (fitCovariance over blocks of kFitBlockVoxels coarse voxels; zero when the fit
+ *  cannot give one), about the target's projection center. */
+void fitUncertainty(const SourceContext& s, const Pose& pose, PhaserEstimate& e)
+{
+  if (!fitCovariance(s.target.index, s.samples, {pose.R, pose.t},
+                     kFitBlockVoxels * s.target.coarse.grid.voxel_size,
+                     e.fit_covariance))
+    e.fit_covariance.setZero();
+}
+
 /** The final \a pose and its verification figures into \a e, and the verdict. */
 void verdict(const SourceContext& s, const Pose& pose, PhaserEstimate& e)
 {
@@ -154,6 +165,7 @@ void verdict(const SourceContext& s, const Pose& pose, PhaserEstimate& e)
   const Distinctness d = standsOut(s, pose, e.hypotheses);
   e.runner_up_rank = d.runner_up_rank;
   e.runner_up_error = d.error;
+  fitUncertainty(s, pose, e);
   e.verification_ms += msSince(start);
   e.verified = e.verification_samples >= kMinVerificationSamples &&
                (!s.p.sensor_centered ||

@@ -236,6 +236,44 @@ std::string run(const std::string& arguments, int& status)
   return out;
 }
 
+TEST(DerivedPairs, DriftCorrectionAndFitAreInverse)
+{
+  EXPECT_EQ(scanIndex("full174.pcd"), 174);
+  EXPECT_EQ(scanIndex("/data/x/full0.pcd"), 0);
+  for (const char* bad : {"full.pcd", "fullx.pcd", "scan3.pcd", "full3.ply"})
+    EXPECT_EQ(scanIndex(bad), -1) << bad;
+  std::vector<ScanPose> poses(3);
+  for (int k = 0; k < 3; ++k) {
+    poses[k].index = 6 * k;
+    poses[k].world_lidar.topLeftCorner<3, 3>() =
+        Eigen::AngleAxisd(0.7 * k + 0.2, Eigen::Vector3d(1, 2, 3).normalized())
+            .toRotationMatrix();
+    poses[k].world_lidar.topRightCorner<3, 1>() = Eigen::Vector3d(k, 2.0 * k, 0.5);
+  }
+  std::vector<RevisitPair> pairs;
+  std::vector<Eigen::Matrix4d> estimates;
+  const Eigen::Vector3d drift(0.002, -0.001, 0.0005);
+  for (int s = 0; s < 3; ++s)
+    for (int t = 0; t < 3; ++t) {
+      if (s == t)
+        continue;
+      RevisitPair p;
+      p.source = "full" + std::to_string(6 * s) + ".pcd";
+      p.target = "full" + std::to_string(6 * t) + ".pcd";
+      p.truth = poses[t].world_lidar.inverse() * poses[s].world_lidar;
+      pairs.push_back(p);
+      RevisitPair corrected = p; // what an exact estimate of the drifted scans gives
+      ASSERT_TRUE(correctDrift(corrected, poses, drift));
+      const Eigen::Vector3d moved = (corrected.truth - p.truth).topRightCorner<3, 1>();
+      EXPECT_NEAR(moved.norm(), std::abs(6.0 * (s - t)) * drift.norm(), 1e-12);
+      estimates.push_back(corrected.truth);
+    }
+  EXPECT_TRUE(fitDrift(pairs, estimates, poses).isApprox(drift, 1e-9));
+  RevisitPair unknown = pairs.front();
+  unknown.target = "full99.pcd";
+  EXPECT_FALSE(correctDrift(unknown, poses, drift));
+}
+
 TEST(PclPhaserBenchmark, RejectsBadOptions)
 {
   int status = 0;
@@ -295,6 +333,12 @@ TEST(PclPhaserBenchmark, RevisitStudyTabulatesMethodsByDistance)
         << bin << "\n"
         << md;
   EXPECT_NE(md.find("| phaser_xyz | all | 2 | "), std::string::npos) << md;
+  EXPECT_NE(
+      md.find("| method | distance | converged with covariance | mean NEES (6) |"),
+      std::string::npos)
+      << md;
+  run("-study revisits -reference-drift 1,2 2>&1", status);
+  EXPECT_NE(status, 0);
   run("-study revisits -derived-pairs -1 2>&1", status);
   EXPECT_NE(status, 0);
   for (const char* wedge : {"0", "1.5", "nan"}) {

@@ -208,6 +208,12 @@ struct PhaserResult {
    *  sub-voxel peak of the last 3-D correlation under the noise its sidelobes and
    *  mismatch imply, not the width of the peak. */
   Eigen::Matrix3d translation_covariance = Eigen::Matrix3d::Zero();
+  /** \brief Covariance of the final pose from its own geometric evidence
+   *  (fitCovariance: the point-to-plane fit of the verification samples, a sandwich
+   *  over blocks of correlated samples, with a model-error factor), 6 x 6, ordered
+   *  and in the caller's frames as poseCovariance; zero when fewer than
+   *  kMinFitSamples samples match or the matches leave a direction unmeasured. */
+  Eigen::Matrix<double, 6, 6> fit_covariance = Eigen::Matrix<double, 6, 6>::Zero();
   double target_ms = 0.0;       ///< ms, the target's preparation; 0 from the cache
   double sampling_ms = 0.0;     ///< ms, spherical binning of the source
   double sht_ms = 0.0;          ///< ms, spherical harmonic transforms of the source
@@ -269,13 +275,19 @@ PhaserResult align(const Target& target, const SourceCloud& source,
 BinghamDistribution rotationUncertainty(const PhaserResult& result);
 
 /** \brief 6 x 6 covariance of the pose error, ordered (rotation vector [rad],
- *  translation [m]) for omega = Log(R_true R_est^T) and nu = t_true - t_est, so its
- *  inverse can serve as the information matrix of a pose-graph edge: the Bingham's
- *  tangent covariance plus a model error per axis, and the
- *  translation covariance plus the rotation error through the lever arm. Symmetric
- *  positive definite when \a result converged; zero otherwise.
- *  \param[in] rotation rotationUncertainty(result)
- *  \param[in] bandwidth the bandwidth the result was computed with */
+ *  translation [m]) for omega = Log(R_true R_est^T) and nu = t_true - t_est of
+ *  PhaserResult::transformation, so its inverse can serve as the information matrix of
+ *  a pose-graph edge. It is result.fit_covariance: the spread of the final pose's own
+ *  point-to-plane fit on the verification samples (fitCovariance: a sandwich over
+ *  blocks of correlated samples, times a model-error factor fitted on real revisits),
+ *  calibrated on revisits of lidar/balm_handheld (doc/method.md section 8). When the
+ *  fit cannot give one (fewer than kMinFitSamples matched samples, a direction left
+ *  unmeasured), the spectral model: the Bingham's tangent covariance plus a model
+ *  error per axis, and the translation covariance plus the rotation error through the
+ *  lever arm. Symmetric positive definite when \a result converged; zero otherwise.
+ *  \param[in] rotation rotationUncertainty(result), for the spectral model
+ *  \param[in] bandwidth the bandwidth the result was computed with, for the spectral
+ *  model */
 Eigen::Matrix<double, 6, 6> poseCovariance(const PhaserResult& result,
                                            const BinghamDistribution& rotation,
                                            int bandwidth);

@@ -1,0 +1,69 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ *
+ * Internal to -study revisits (revisits.cpp): a trial, the distance bins, and the
+ * covariance calibration (revisits_calibration.cpp): the NEES table and the odometry
+ * drift of the references.
+ */
+#pragma once
+
+#include "methods.h"
+#include "revisits.h"
+
+#include <Eigen/Core>
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace pcl::phaser {
+namespace bench {
+
+constexpr double kRreThreshold = 5.0;  ///< deg, both success levels
+constexpr double kRteThresholdA = 2.0; ///< m, loop-closure level
+constexpr double kRteThresholdB = 0.6; ///< m, the benchmark's usual level
+
+/** One method on one pair. */
+struct RevisitTrial {
+  std::string method;
+  RevisitPair pair;
+  double rre = 0.0, rte = 0.0, ms = 0.0, score = 0.0, overlap_est = 0.0;
+  bool converged = false;
+  Eigen::Matrix4d estimate = Eigen::Matrix4d::Identity(); ///< T_target_source
+  VerificationFigures verification; ///< pcl_phaser's (NaN for others)
+  NeesFigures nees; ///< of a converged trial with a covariance (pcl_phaser's)
+
+  bool successA() const { return rre < kRreThreshold && rte < kRteThresholdA; }
+  bool successB() const { return rre < kRreThreshold && rte < kRteThresholdB; }
+};
+
+/** A range of the distance between the scans, [lo, hi). */
+struct Bin {
+  std::string label;
+  double lo, hi;
+};
+
+/** \brief The distance bins of the tables: four disjoint ones, then <10 m, >=10 m, all.
+ */
+const std::vector<Bin>& bins();
+
+/** \brief The covariance's calibration per method (those with one) and distance bin:
+ *  converged trials, mean and median 6-D NEES, the shares inside the 95 % ellipsoids
+ *  (6-D, and each block in 3-D), mean NEES per block, RMS errors, median sigmas. */
+void writeNeesTable(std::ostream& out, const std::vector<RevisitTrial>& trials,
+                    const std::vector<std::string>& methods);
+
+/** \brief The reference poses of \a pairs corrected for a linear odometry drift
+ *  (correctDrift(), m per scan index, world frame), said in \a origin; false (with a
+ *  message) when a pair's scans have no pose. */
+bool correctReferences(const Eigen::Vector3d& drift, const std::vector<ScanPose>& poses,
+                       std::vector<RevisitPair>& pairs, std::string& origin);
+
+/** \brief "Linear odometry drift ... fitted" (fitDrift()) on the converged trials of
+ *  \a method, or "" without any or without poses. */
+std::string driftLine(const std::vector<RevisitTrial>& trials,
+                      const std::string& method, const std::vector<ScanPose>& poses);
+
+} // namespace bench
+} // namespace pcl::phaser
