@@ -10,6 +10,10 @@
  *
  *   pcl_phaser_loop_closure_report --records R.jsonl --scans LIST --poses POSES
  *                                  [--csv pairs.csv] [--real-overlap 0.3]
+ *                                  [--reference-drift DX,DY,DZ]
+ *   --reference-drift removes a linear drift of the reference positions (world frame, m
+ *   per scan index, the index the digits of each scan's file name give), as
+ *   pcl_phaser_benchmark -study revisits -reference-drift does.
  *   pcl_phaser_loop_closure_report --yardstick     (ms of one 128^3 r2c FFT, 1 thread)
  */
 #include "batch_pairs.h"
@@ -171,6 +175,23 @@ const char* value(int argc, char** argv, const char* name, const char* fallback)
   return fallback;
 }
 
+/** \brief The number in a scan's file name (full120.pcd: 120), or -1. */
+int scanNumber(const std::string& name)
+{
+  const std::size_t slash = name.find_last_of('/');
+  const std::string base = name.substr(slash == std::string::npos ? 0 : slash + 1);
+  const std::size_t first = base.find_first_of("0123456789");
+  return first == std::string::npos ? -1 : std::atoi(base.c_str() + first);
+}
+
+/** \brief Positions moved back by \a drift times each scan's number. */
+void removeDrift(const Eigen::Vector3d& drift, const std::vector<std::string>& names,
+                 std::vector<Eigen::Matrix4d>& poses)
+{
+  for (std::size_t k = 0; k < poses.size(); ++k)
+    poses[k].topRightCorner<3, 1>() -= std::max(0, scanNumber(names[k])) * drift;
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -201,6 +222,11 @@ int main(int argc, char** argv)
                         error.empty() ? "poses and scans differ in number"
                                       : error.c_str()),
            2;
+  Eigen::Vector3d drift = Eigen::Vector3d::Zero();
+  if (const char* text = value(argc, argv, "--reference-drift", nullptr))
+    if (std::sscanf(text, "%lf,%lf,%lf", &drift.x(), &drift.y(), &drift.z()) != 3)
+      return std::fprintf(stderr, "--reference-drift expects DX,DY,DZ\n"), 1;
+  removeDrift(drift, names, poses);
   std::map<std::string, Cloud::Ptr> clouds;
   std::vector<Row> rows;
   FILE* csv = csv_path ? std::fopen(csv_path, "w") : nullptr;
