@@ -58,33 +58,31 @@ alignWith(std::shared_ptr<pcl::PhaserRegistration<PointT, PointT>>& prepared,
 
 } // namespace
 
-std::shared_ptr<CloudEntry> CloudCache::get(const std::string& path, std::string& error)
+std::shared_ptr<const CloudEntry> CloudCache::get(const std::string& path,
+                                                  std::string& error)
 {
-  const auto it = entries_.find(path);
-  if (it != entries_.end()) {
-    order_.splice(order_.begin(), order_, it->second.second);
-    return it->second.first;
-  }
-  std::shared_ptr<CloudEntry> entry = loadEntry(path, error);
-  if (!entry)
-    return nullptr;
-  order_.push_front(path);
-  entries_[path] = {entry, order_.begin()};
-  while (entries_.size() > capacity_) {
-    entries_.erase(order_.back());
-    order_.pop_back();
-  }
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (std::shared_ptr<const CloudEntry> entry = clouds_.find(path))
+    return entry;
+  std::shared_ptr<const CloudEntry> entry = loadEntry(path, error);
+  if (entry)
+    clouds_.put(path, entry);
   return entry;
 }
 
-AlignOutcome alignEntries(const CloudEntry& source, CloudEntry& target,
-                          const Eigen::Matrix4d& guess, const PhaserParameters& params)
+AlignOutcome alignClouds(const CloudEntry& source, const std::string& target_path,
+                         const CloudEntry& target, PreparedTargets& prepared,
+                         const Eigen::Matrix4d& guess, const PhaserParameters& params)
 {
+  std::shared_ptr<PreparedTarget> kept = prepared.find(target_path);
+  if (!kept) {
+    kept = std::make_shared<PreparedTarget>();
+    prepared.put(target_path, kept);
+  }
   if (source.intensity && target.intensity)
-    return alignWith<pcl::PointXYZI>(target.target_i, source.with_intensity,
+    return alignWith<pcl::PointXYZI>(kept->with_intensity, source.with_intensity,
                                      target.with_intensity, guess, params);
-  return alignWith<pcl::PointXYZ>(target.target_xyz, source.xyz, target.xyz, guess,
-                                  params);
+  return alignWith<pcl::PointXYZ>(kept->xyz, source.xyz, target.xyz, guess, params);
 }
 
 } // namespace batch

@@ -10,9 +10,13 @@
 
 #include <pcl/console/print.h>
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <thread>
 #include <unistd.h>
 
@@ -71,45 +75,120 @@ std::string pendingPairs(const PairList& list, const std::vector<std::size_t>& s
   return {};
 }
 
+/** \brief Loaded clouds kept for all jobs: a scan is the source of many pairs (about
+ *  2.5 MB for an 80k-point scan). */
+constexpr std::size_t kLoadedClouds = 64;
+
+/** \brief What the jobs of a run share: the work, the clouds, the output. */
+struct Run {
+  Run(const PairList& pairs, const RunSettings& run_settings)
+      : list(pairs)
+      , settings(run_settings)
+      , params(run_settings.params)
+  {
+  }
+  const PairList& list;
+  const RunSettings& settings;
+  PhaserParameters params;                    ///< each job's (threads split)
+  std::vector<std::vector<std::size_t>> work; ///< pieces of target groups
+  std::atomic<std::size_t> next{0};           ///< the next piece to take
+  CloudCache clouds{kLoadedClouds};
+  RecordWriter writer;
+  std::mutex output; ///< guards writer, progress and error
+  std::unique_ptr<Progress> progress;
+  std::string error; ///< the first write failure
+  std::atomic<bool> failed{false};
+};
+
+/** \brief The pending pairs as pieces of consecutive pairs of one target, none longer
+ *  than an even share of the jobs (so that one big group still runs on every job). */
+std::vector<std::vector<std::size_t>>
+workPieces(const PairList& list, const std::vector<std::size_t>& pending, int jobs)
+{
+  const std::size_t share = std::max<std::size_t>(
+      1, (pending.size() + static_cast<std::size_t>(jobs) - 1) / jobs);
+  std::vector<std::vector<std::size_t>> pieces;
+  for (std::size_t k = 0; k < pending.size(); ++k) {
+    const bool same = k > 0 && list.pairs[pending[k]].target_id ==
+                                   list.pairs[pending[k - 1]].target_id;
+    if (!same || pieces.back().size() >= share)
+      pieces.emplace_back();
+    pieces.back().push_back(pending[k]);
+  }
+  return pieces;
+}
+
 /** \brief Align one pair (loading what the cache lacks) into its record; nothing when
  *  a stop signal cut a load short (the pair is redone on resume). */
-std::optional<Record> alignPair(const Pair& pair, std::size_t pairs, CloudCache& cache,
-                                const PhaserParameters& params)
+std::optional<Record> alignPair(const Pair& pair, Run& run, PreparedTargets& prepared)
 {
   std::string error;
-  const std::shared_ptr<CloudEntry> target = cache.get(pair.target_path, error);
-  const std::shared_ptr<CloudEntry> source =
-      target ? cache.get(pair.source_path, error) : nullptr;
+  const auto target = run.clouds.get(pair.target_path, error);
+  const auto source = target ? run.clouds.get(pair.source_path, error) : nullptr;
+  const std::size_t pairs = run.list.pairs.size();
   if (!target || !source) {
     if (stop_requested)
       return std::nullopt;
     return failedRecord(pair, pairs, error);
   }
   const auto start = std::chrono::steady_clock::now();
-  const AlignOutcome outcome = alignEntries(*source, *target, pair.guess, params);
+  const AlignOutcome outcome =
+      alignClouds(*source, pair.target_path, *target, prepared, pair.guess, run.params);
   const double ms = std::chrono::duration<double, std::milli>(
                         std::chrono::steady_clock::now() - start)
                         .count();
   return alignedRecord(pair, pairs, outcome.result, outcome.covariance, ms);
 }
 
-/** \brief The engine's first align of a process touches its memory anew (most of what
- *  it costs beyond the next fresh align: doc/benchmarks.md): warm it up on a thread
- *  while the first pair is read, and keep the memory of one align for the next. */
-std::thread startWarmUp(const PhaserParameters& params)
+/** \brief One job: takes pieces until none is left, a stop is asked or a write
+ *  failed, keeping its own prepared targets. */
+void runJob(Run& run)
 {
-  WarmUpOptions options;
-  options.keep_memory = true;
-  return std::thread([params, options] { warmUp(params, options); });
+  PreparedTargets prepared(static_cast<std::size_t>(run.settings.cache));
+  for (std::size_t piece; (piece = run.next++) < run.work.size();)
+    for (const std::size_t i : run.work[piece]) {
+      if (stop_requested || run.failed)
+        return;
+      const std::optional<Record> record = alignPair(run.list.pairs[i], run, prepared);
+      if (!record)
+        return;
+      const std::lock_guard<std::mutex> lock(run.output);
+      if (std::string error = run.writer.append(*record); !error.empty()) {
+        run.error = error;
+        run.failed = true;
+        return;
+      }
+      run.progress->finished(run.list.pairs[i], *record);
+    }
 }
 
-/** \brief Read the first pair's clouds, then wait for the warm-up. */
-void finishWarmUp(std::thread& warm_up, const Pair& first, CloudCache& cache)
+/** \brief The engine's first align of a process touches its memory anew (most of what
+ *  it costs beyond the next fresh align: doc/benchmarks.md): warm it up on a thread
+ *  while the first pair is read, keeping the memory of one align for the next. */
+void warmUpWhileReading(Run& run)
 {
+  if (run.work.empty())
+    return;
+  WarmUpOptions options;
+  options.keep_memory = true;
+  std::thread warm_up([&run, options] { warmUp(run.params, options); });
+  const Pair& first = run.list.pairs[run.work[0][0]];
   std::string ignored; // a load that fails is reported with its pair
-  cache.get(first.target_path, ignored);
-  cache.get(first.source_path, ignored);
+  run.clouds.get(first.target_path, ignored);
+  run.clouds.get(first.source_path, ignored);
   warm_up.join();
+}
+
+/** \brief Run the work on \a jobs threads (the calling one among them). */
+void runJobs(Run& run, int jobs)
+{
+  warmUpWhileReading(run);
+  std::vector<std::thread> others;
+  for (int j = 1; j < jobs; ++j)
+    others.emplace_back([&run] { runJob(run); });
+  runJob(run);
+  for (std::thread& t : others)
+    t.join();
 }
 
 int writeGraph(const RunSettings& settings, const PairList& list)
@@ -137,36 +216,27 @@ int runBatch(const PairList& list, const RunSettings& settings)
       !error.empty())
     return failWith(kInput, error);
   if (!settings.g2o.empty() && ::access(folderOf(settings.g2o).c_str(), W_OK) != 0)
-    return failWith(kOutput, "cannot write '" + settings.g2o +
-                                 "': its folder is not "
-                                 "writable");
-  RecordWriter writer;
-  if (std::string error = writer.open(settings.out); !error.empty())
+    return failWith(kOutput,
+                    "cannot write '" + settings.g2o + "': its folder is not writable");
+  Run run(list, settings);
+  if (std::string error = run.writer.open(settings.out); !error.empty())
     return failWith(kOutput, error);
   catchStopSignals();
-  CloudCache cache(static_cast<std::size_t>(settings.cache));
-  Progress progress(shard.size(), shard.size() - pending.size(),
-                    countAccepted(records));
-  std::thread warm_up = pending.empty() ? std::thread() : startWarmUp(settings.params);
-  for (const std::size_t i : pending) {
-    if (warm_up.joinable())
-      finishWarmUp(warm_up, list.pairs[i], cache);
-    if (stop_requested)
-      break;
-    const std::optional<Record> record =
-        alignPair(list.pairs[i], list.pairs.size(), cache, settings.params);
-    if (!record)
-      break;
-    if (std::string error = writer.append(*record); !error.empty())
-      return failWith(kOutput, error);
-    progress.finished(list.pairs[i], *record);
-  }
-  progress.close();
+  const int jobs = std::max(1, settings.jobs);
+  if (jobs > 1 && run.params.num_threads == 0)
+    run.params.num_threads = std::max(1, resolveThreadCount(0) / jobs);
+  run.work = workPieces(list, pending, jobs);
+  run.progress = std::make_unique<Progress>(shard.size(), shard.size() - pending.size(),
+                                            countAccepted(records));
+  runJobs(run, jobs);
+  if (run.failed)
+    return failWith(kOutput, run.error);
+  run.progress->close();
   const int graph = writeGraph(settings, list);
   if (stop_requested) {
     pcl::console::print_warn("Stopped: %zu of %zu pairs of this shard are recorded in "
                              "'%s'; run the same command again to resume.\n",
-                             progress.done(), shard.size(), settings.out.c_str());
+                             run.progress->done(), shard.size(), settings.out.c_str());
     return kInterrupted;
   }
   return graph;

@@ -32,9 +32,14 @@ struct RunSettings {
   std::string out;           ///< the JSONL file (appended to; resumed from)
   std::string g2o;           ///< the g2o graph to write at the end; empty: none
   int shard = 0, shards = 1; ///< this part, of how many
-  /** \brief Loaded clouds kept, with their prepared targets, least recently used out
-   *  first, >= 1. A prepared target holds its spectra (tens of MB at the defaults). */
+  /** \brief Prepared targets each job keeps, least recently used out first, >= 1. A
+   *  prepared target holds its spectra (tens of MB at the defaults); pairs come
+   *  grouped by target, so 1 already prepares each target once per job. */
   int cache = 4;
+  /** \brief Pairs aligned at once, >= 1, each job taking whole target groups. With
+   *  more than one and PhaserParameters::num_threads 0, the hardware threads are
+   *  split between the jobs. */
+  int jobs = 1;
   PhaserParameters params; ///< the registration settings
 };
 

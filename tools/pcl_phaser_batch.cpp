@@ -13,6 +13,7 @@
 
 #include <pcl/console/print.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -27,6 +28,14 @@ using namespace pcl::console;
 namespace batch = pcl::phaser::batch;
 
 namespace {
+
+/** \brief Jobs by default: one per hardware thread, at most 4 (each job holds an
+ *  align's memory and its prepared targets). Two jobs of one engine thread align
+ *  more pairs per second than one job of two (doc/benchmarks.md, loop closures). */
+int defaultJobs()
+{
+  return std::clamp(pcl::phaser::resolveThreadCount(0), 1, 4);
+}
 
 void printHelp(const char* name)
 {
@@ -55,9 +64,11 @@ void printHelp(const char* name)
       "    --shard K/N       = the K-th of N disjoint parts, K = 0..N-1 (default: "
       "SLURM_ARRAY_TASK_ID /\n"
       "                        SLURM_ARRAY_TASK_COUNT when set, else 0/1)\n"
-      "    --cache N         = clouds and prepared targets kept, 1..4096 (default: 4)\n"
-      "    --threads T       = engine threads, 0..64 (default: 0, one per hardware "
-      "thread)\n"
+      "    --jobs J          = pairs aligned at once, 1..64, each job taking whole "
+      "target groups (default: %d)\n"
+      "    --threads T       = engine threads per job, 0..64 (default: 0, the hardware "
+      "threads split between the jobs)\n"
+      "    --cache N         = prepared targets kept per job, 1..4096 (default: 4)\n"
       "    -b B, --grid N, --passes K, --center sensor|centroid|auto = as in "
       "pcl_phaser_align\n"
       "  merge OUT PARTS... joins shard outputs: .jsonl parts into OUT.jsonl (every "
@@ -66,7 +77,7 @@ void printHelp(const char* name)
       "their reason),\n"
       "  1 usage, 2 unreadable input list, 3 output not writable, 130 stopped by "
       "SIGINT/SIGTERM (resume).\n",
-      name, name, name);
+      name, name, name, defaultJobs());
 }
 
 int usage(const std::string& reason)
@@ -81,12 +92,13 @@ using Given = std::map<std::string, std::string>;
 int collect(int argc, char** argv, Given& given)
 {
   static const std::map<std::string, bool> takes_value = {
-      {"--pairs", true},     {"--scans", true},   {"--poses", true},
-      {"--radius", true},    {"--min-gap", true}, {"--print-pairs", false},
-      {"--out", true},       {"--g2o", true},     {"--shard", true},
-      {"--cache", true},     {"--threads", true}, {"-b", true},
-      {"--bandwidth", true}, {"--grid", true},    {"--passes", true},
-      {"--center", true},    {"-h", false},       {"--help", false}};
+      {"--pairs", true},  {"--scans", true},     {"--poses", true},
+      {"--radius", true}, {"--min-gap", true},   {"--print-pairs", false},
+      {"--out", true},    {"--g2o", true},       {"--shard", true},
+      {"--cache", true},  {"--jobs", true},      {"--threads", true},
+      {"-b", true},       {"--bandwidth", true}, {"--grid", true},
+      {"--passes", true}, {"--center", true},    {"-h", false},
+      {"--help", false}};
   for (int i = 1; i < argc; ++i) {
     const auto spec = takes_value.find(argv[i]);
     if (spec == takes_value.end())
@@ -118,13 +130,15 @@ int integer(const Given& given, const std::string& name, long lo, long hi, int& 
   return batch::kOk;
 }
 
-int engineSettings(const Given& given, pcl::phaser::PhaserParameters& p, int& cache)
+int engineSettings(const Given& given, pcl::phaser::PhaserParameters& p, int& cache,
+                   int& jobs)
 {
   for (const int rc : {integer(given, "-b", 1, 256, p.bandwidth),
                        integer(given, "--grid", 8, 1024, p.spatial_grid_size),
                        integer(given, "--passes", 1, 5, p.passes),
                        integer(given, "--threads", 0, 64, p.num_threads),
-                       integer(given, "--cache", 1, 4096, cache)})
+                       integer(given, "--cache", 1, 4096, cache),
+                       integer(given, "--jobs", 1, 64, jobs)})
     if (rc != batch::kOk)
       return rc;
   const auto center = given.find("--center");
@@ -203,8 +217,10 @@ int merge(int argc, char** argv)
 int run(const Given& given)
 {
   batch::RunSettings settings;
-  for (const int rc : {engineSettings(given, settings.params, settings.cache),
-                       shardSettings(given, settings.shard, settings.shards)})
+  settings.jobs = defaultJobs();
+  for (const int rc :
+       {engineSettings(given, settings.params, settings.cache, settings.jobs),
+        shardSettings(given, settings.shard, settings.shards)})
     if (rc != batch::kOk)
       return rc;
   if (given.count("--pairs") == given.count("--scans"))

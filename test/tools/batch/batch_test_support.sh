@@ -35,9 +35,10 @@ normalized() {
   sed -E 's/,"time_ms":[^,]*,"target_ms":[^,}]*//' "$1" | sort -t: -k2,2n
 }
 
-# The uninterrupted serial run every other run is compared with.
+# The uninterrupted serial run (one job of two engine threads) every other run (other
+# job and thread counts, shards) is compared with.
 serial_run() {
-  "$BATCH" --pairs "$work/pairs.txt" --out "$work/serial.jsonl" --g2o "$work/serial.g2o" \
+  "$BATCH" --pairs "$work/pairs.txt" --out "$work/serial.jsonl" --g2o "$work/serial.g2o" --jobs 1 \
     --threads 2 2> "$work/serial.log" || { cat "$work/serial.log"; fail "the serial run"; }
   [[ $(wc -l < "$work/serial.jsonl") == "$npairs" ]] || fail "the serial run recorded $(wc -l < "$work/serial.jsonl") pairs, not $npairs"
   grep -q '"converged":true' "$work/serial.jsonl" || fail "no pair converged in the serial run"

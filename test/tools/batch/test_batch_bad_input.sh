@@ -16,6 +16,7 @@ expect 1 "Give either --pairs or --scans" --out "$o"
 expect 1 "Unknown argument" --pairs "$work/pairs.txt" --out "$o" --bogus
 expect 1 "Invalid shard '3/2'" --pairs "$work/pairs.txt" --out "$o" --shard 3/2
 expect 1 "Invalid value 'x' for --cache" --pairs "$work/pairs.txt" --out "$o" --cache x
+expect 1 "Invalid value '0' for --jobs" --pairs "$work/pairs.txt" --out "$o" --jobs 0
 expect 1 "needs a value" --pairs
 expect 1 "--out RESULTS.jsonl is required" --pairs "$work/pairs.txt"
 expect 2 "cannot read '$work/none.txt'" --pairs "$work/none.txt" --out "$o"
