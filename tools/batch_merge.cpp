@@ -39,21 +39,24 @@ std::string mergeRecords(const std::string& out, const std::vector<std::string>&
         return "'" + part + "' comes from another list (" + std::to_string(total) +
                " pairs, not " + std::to_string(pairs) + ")";
       pairs = total;
+      if (index >= total)
+        return "'" + part + "' holds pair " + std::to_string(index) + " of " +
+               std::to_string(total);
       const auto [it, fresh] = by_index.emplace(index, std::make_pair(r, part));
       if (!fresh)
         return "pair " + std::to_string(index) + " is in '" + it->second.second +
                "' and in '" + part + "'";
     }
   }
-  std::vector<std::size_t> missing;
-  for (std::size_t i = 0; i < pairs; ++i)
-    if (!by_index.count(i))
-      missing.push_back(i);
-  if (!missing.empty() || by_index.size() != pairs)
-    return std::to_string(missing.size()) + " of " + std::to_string(pairs) +
-           " pairs are missing (the first: pair " +
-           (missing.empty() ? std::string("?") : std::to_string(missing[0])) +
+  if (by_index.size() != pairs) { // every index is below pairs: some are missing
+    std::size_t first = 0;
+    for (const auto& entry : by_index)
+      if (entry.first == first)
+        ++first;
+    return std::to_string(pairs - by_index.size()) + " of " + std::to_string(pairs) +
+           " pairs are missing (the first: pair " + std::to_string(first) +
            "); rerun the shards that hold them";
+  }
   std::string text;
   for (const auto& [index, entry] : by_index)
     text += entry.first.dump() + "\n";

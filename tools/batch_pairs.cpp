@@ -3,6 +3,8 @@
 //
 #include "batch_pairs.h"
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -12,6 +14,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 namespace pcl {
@@ -38,6 +41,27 @@ std::optional<double> number(const std::string& text)
   if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
     return std::nullopt;
   return v;
+}
+
+/** \brief Whether \a text is valid UTF-8 (records are JSON, which needs it). */
+bool isUtf8(const std::string& text)
+{
+  try {
+    (void)nlohmann::json(text).dump();
+    return true;
+  } catch (const nlohmann::json::exception&) {
+    return false;
+  }
+}
+
+/** \brief Whether the top left of \a m is a rotation (R^T R = I, det R = 1, to 1e-4).
+ */
+bool isRigid(const Eigen::Matrix4d& m)
+{
+  const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
+  return (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() <
+             1e-4 &&
+         R.determinant() > 0.0;
 }
 
 /** \brief A row-major 3x4 from 12 tokens starting at \a first, or nothing. */
@@ -109,6 +133,8 @@ std::string readPairList(const std::string& path, PairList& list)
     if (t.size() != 2 && t.size() != 14)
       return "expected SOURCE TARGET [12 numbers], got " + std::to_string(t.size()) +
              " fields";
+    if (!isUtf8(t[0]) || !isUtf8(t[1]))
+      return std::string("a path is not valid UTF-8");
     Pair p;
     p.index = list.pairs.size();
     p.source = t[0];
@@ -117,6 +143,8 @@ std::string readPairList(const std::string& path, PairList& list)
       const std::optional<Eigen::Matrix4d> guess = rigid3x4(t, 2);
       if (!guess)
         return std::string("the guess is not 12 finite numbers");
+      if (!isRigid(*guess))
+        return std::string("the guess is not a rigid transformation");
       p.guess = *guess;
       p.has_guess = true;
     }
@@ -140,6 +168,10 @@ std::string readScanList(const std::string& path, std::vector<std::string>& give
   return forEachLine(path, [&](const std::vector<std::string>& t, int) {
     if (t.size() != 1)
       return std::string("expected one path per line");
+    if (!isUtf8(t[0]))
+      return std::string("the path is not valid UTF-8");
+    if (std::find(given.begin(), given.end(), t[0]) != given.end())
+      return "'" + t[0] + "' is listed twice";
     given.push_back(t[0]);
     resolved.push_back(resolvePath(folderOf(path), t[0]));
     return std::string();

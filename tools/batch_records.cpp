@@ -14,6 +14,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -100,6 +101,29 @@ bool writeAll(int fd, const std::string& text)
   return true;
 }
 
+/** \brief Whether \a r has every member, of its type, that the tool reads back. */
+bool isRecord(const Record& r)
+{
+  const auto has = [&r](const char* key, Record::value_t type) {
+    return r.contains(key) &&
+           (r[key].type() == type ||
+            (type == Record::value_t::number_integer && r[key].is_number_unsigned()));
+  };
+  using T = Record::value_t;
+  if (!r.is_object() || !has("pair", T::number_unsigned) ||
+      !has("pairs", T::number_unsigned) || !has("source", T::string) ||
+      !has("target", T::string) || !has("source_id", T::number_integer) ||
+      !has("target_id", T::number_integer) || !has("status", T::string) ||
+      !has("converged", T::boolean) || r["pair"] >= r["pairs"])
+    return false;
+  Eigen::Matrix4d T4;
+  Eigen::Matrix<double, 6, 6> C;
+  return r["status"] != "ok" ||
+         (r.contains("transformation") && r.contains("covariance") &&
+          matrixOf<4, 4>(r["transformation"], T4) &&
+          matrixOf<6, 6>(r["covariance"], C));
+}
+
 std::string readWhole(const std::string& path, bool& exists, std::string& error)
 {
   std::ifstream in(path, std::ios::binary);
@@ -171,7 +195,7 @@ std::string readRecords(const std::string& path, std::vector<Record>& records,
   for (int line = 1; start < text.size(); ++line) {
     const std::size_t end = text.find('\n', start);
     if (end == std::string::npos) { // cut short by a kill: that pair is redone
-      if (!repair)
+      if (!repair || text.compare(start, 8, "{\"pair\":") != 0)
         return "'" + path + "' line " + std::to_string(line) + " is cut short";
       if (::truncate(path.c_str(), static_cast<off_t>(start)) != 0)
         return "cannot repair '" + path + "': " + std::strerror(errno);
@@ -182,9 +206,7 @@ std::string readRecords(const std::string& path, std::vector<Record>& records,
     if (body.find_first_not_of(" \t\r") == std::string::npos)
       continue;
     Record r = Record::parse(body, nullptr, false);
-    if (r.is_discarded() || !r.is_object() || !r.contains("pair") ||
-        !r["pair"].is_number_unsigned() || !r.contains("source") ||
-        !r.contains("target"))
+    if (!isRecord(r))
       return "'" + path + "' line " + std::to_string(line) + " is not a pair record";
     records.push_back(std::move(r));
   }
@@ -197,13 +219,20 @@ std::string RecordWriter::open(const std::string& path)
   fd_ = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0)
     return "cannot write '" + path + "': " + std::strerror(errno);
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0)
+    return "cannot write '" + path + "': another process is writing it";
   return {};
 }
 
 std::string RecordWriter::append(const Record& record)
 {
-  if (!writeAll(fd_, record.dump() + "\n"))
-    return "cannot write '" + path_ + "': " + std::strerror(errno);
+  const off_t before = ::lseek(fd_, 0, SEEK_END);
+  if (!writeAll(fd_, record.dump() + "\n")) {
+    const std::string reason = std::strerror(errno);
+    if (before >= 0 && ::ftruncate(fd_, before) != 0) // leave no torn line behind
+      return "cannot write '" + path_ + "': " + reason + ", nor cut the torn line off";
+    return "cannot write '" + path_ + "': " + reason;
+  }
   if (::fdatasync(fd_) != 0 && errno != EINVAL)
     return "cannot sync '" + path_ + "': " + std::strerror(errno);
   return {};

@@ -14,6 +14,7 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -25,11 +26,13 @@ namespace phaser {
 namespace batch {
 namespace {
 
-volatile std::sig_atomic_t stop_requested = 0;
+// Written by the signal handler, read by every job (lock-free, so async-signal-safe).
+std::atomic<bool> stop_requested{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
 
 void requestStop(int)
 {
-  stop_requested = 1;
+  stop_requested = true;
 }
 
 /** \brief SIGINT and SIGTERM (Slurm's time limit) let the pairs in flight finish. */
@@ -48,12 +51,35 @@ int failWith(int code, const std::string& reason)
   return code;
 }
 
-/** \brief The pairs of the shard not yet in \a records; an error when a record is not
- *  a pair of this shard (another list, another shard: use another --out). */
-std::string pendingPairs(const PairList& list, const std::vector<std::size_t>& shard,
-                         const std::vector<Record>& records, const std::string& out,
-                         std::vector<std::size_t>& pending)
+/** \brief What makes records of one run comparable: the shard and the settings that
+ *  change results (not threads or jobs). */
+std::string runFingerprint(const RunSettings& settings)
 {
+  const PhaserParameters& p = settings.params;
+  const char* centers[] = {"sensor", "centroid", "auto"};
+  char text[160];
+  std::snprintf(text, sizeof(text),
+                "shard %d/%d, B %d, grid %d, voxel %.17g, passes %d, %s",
+                settings.shard, settings.shards, p.bandwidth, p.spatial_grid_size,
+                p.voxel_size, p.passes, centers[static_cast<int>(p.projection_center)]);
+  return text;
+}
+
+/** \brief The pairs of the shard not yet in \a records; an error when a record is not
+ *  a pair of this list, shard and settings (use another --out) or is there twice. */
+std::string pendingPairs(const PairList& list, const std::vector<std::size_t>& shard,
+                         const std::vector<Record>& records,
+                         const RunSettings& settings, std::vector<std::size_t>& pending)
+{
+  const std::string& out = settings.out;
+  const std::string fingerprint = runFingerprint(settings);
+  for (const Record& r : records)
+    if (r.value("run", std::string()) != fingerprint ||
+        r.value("pairs", std::size_t{0}) != list.pairs.size())
+      return "'" + out + "' was written by another run (" +
+             r.value("run", std::string("?")) + ", " + r["pairs"].dump() +
+             " pairs; this one: " + fingerprint + ", " +
+             std::to_string(list.pairs.size()) + " pairs): use another --out";
   std::map<std::string, std::size_t> mine;
   for (const std::size_t i : shard)
     mine.emplace(pairKey(list.pairs[i].source, list.pairs[i].target), i);
@@ -66,6 +92,8 @@ std::string pendingPairs(const PairList& list, const std::vector<std::size_t>& s
              r.value("source", std::string()) + " -> " +
              r.value("target", std::string()) +
              "), which is not that pair of this list and shard: use another --out";
+    if (done[it->second])
+      return "'" + out + "' holds pair " + r["pair"].dump() + " twice";
     done[it->second] = true;
   }
   pending.clear();
@@ -85,11 +113,13 @@ struct Run {
       : list(pairs)
       , settings(run_settings)
       , params(run_settings.params)
+      , fingerprint(runFingerprint(run_settings))
   {
   }
   const PairList& list;
   const RunSettings& settings;
   PhaserParameters params;                    ///< each job's (threads split)
+  std::string fingerprint;                    ///< runFingerprint(), in every record
   std::vector<std::vector<std::size_t>> work; ///< pieces of target groups
   std::atomic<std::size_t> next{0};           ///< the next piece to take
   CloudCache clouds{kLoadedClouds};
@@ -149,10 +179,13 @@ void runJob(Run& run)
     for (const std::size_t i : run.work[piece]) {
       if (stop_requested || run.failed)
         return;
-      const std::optional<Record> record = alignPair(run.list.pairs[i], run, prepared);
+      std::optional<Record> record = alignPair(run.list.pairs[i], run, prepared);
       if (!record)
         return;
+      (*record)["run"] = run.fingerprint;
       const std::lock_guard<std::mutex> lock(run.output);
+      if (run.failed) // another job's write failed: append nothing after it
+        return;
       if (std::string error = run.writer.append(*record); !error.empty()) {
         run.error = error;
         run.failed = true;
@@ -212,7 +245,7 @@ int runBatch(const PairList& list, const RunSettings& settings)
   std::vector<std::size_t> pending;
   if (std::string error = readRecords(settings.out, records, true); !error.empty())
     return failWith(kOutput, error);
-  if (std::string error = pendingPairs(list, shard, records, settings.out, pending);
+  if (std::string error = pendingPairs(list, shard, records, settings, pending);
       !error.empty())
     return failWith(kInput, error);
   if (!settings.g2o.empty() && ::access(folderOf(settings.g2o).c_str(), W_OK) != 0)
@@ -233,7 +266,7 @@ int runBatch(const PairList& list, const RunSettings& settings)
     return failWith(kOutput, run.error);
   run.progress->close();
   const int graph = writeGraph(settings, list);
-  if (stop_requested) {
+  if (stop_requested && run.progress->done() < shard.size()) {
     pcl::console::print_warn("Stopped: %zu of %zu pairs of this shard are recorded in "
                              "'%s'; run the same command again to resume.\n",
                              run.progress->done(), shard.size(), settings.out.c_str());

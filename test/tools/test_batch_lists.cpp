@@ -74,7 +74,9 @@ TEST(BatchPairList, MalformedListsAreRefusedWithTheLine)
       {"a.pcd b.pcd 1 2 3\n", "line 1: expected SOURCE TARGET"},
       {"x y\na.pcd b.pcd 1 0 0 0 0 1 0 0 0 0 1 nan\n", "line 2: the guess"},
       {"a.pcd b.pcd 1 0 0 0 0 1 0 0 0 0 1 zero\n", "line 1: the guess"},
-      {"a.pcd b.pcd\n\na.pcd b.pcd\n", "line 3: repeats the pair of line 1"}};
+      {"a.pcd b.pcd\n\na.pcd b.pcd\n", "line 3: repeats the pair of line 1"},
+      {"a.pcd b.pcd 2 0 0 0 0 1 0 0 0 0 1 0\n", "line 1: the guess is not a rigid"},
+      {"a\xff.pcd b.pcd\n", "line 1: a path is not valid UTF-8"}};
   for (const auto& [text, reason] : cases) {
     const TempFile list(text);
     batch::PairList pairs;

@@ -41,7 +41,8 @@ grep -q '"source":"missing.pcd".*"error":".*missing.pcd' "$work/some.jsonl" || f
 grep -q '"source":"scans/full18.pcd".*"status":"ok"' "$work/some.jsonl" || fail "the good pair was not aligned"
 
 # An output that belongs to another list is refused, not mixed.
-expect 2 "is not that pair of this list" --pairs "$work/pairs.txt" --out "$work/some.jsonl"
+expect 2 "was written by another run" --pairs "$work/pairs.txt" --out "$work/some.jsonl"
+expect 2 "was written by another run" --pairs "$work/some.txt" --out "$work/some.jsonl" -b 32
 
 # Loop-closure candidates from a trajectory, printed as a list the tool reads back.
 ls "$scans"/full*.pcd | sort -V > "$work/all_scans.txt"

@@ -6,13 +6,14 @@
 source "$(dirname "$0")/batch_test_support.sh"
 serial_run
 
-# Wait until FILE holds at least N lines (or the process PID ended).
+# Wait until FILE holds at least N lines (or the process PID ended); fail after 10 min.
 wait_lines() {
-  for _ in $(seq 1 600); do
+  for _ in $(seq 1 6000); do
     [[ -f $1 && $(wc -l < "$1") -ge $2 ]] && return 0
     kill -0 "$3" 2> /dev/null || return 0
     sleep 0.1
   done
+  fail "no $2 records in $1 after 10 minutes"
 }
 
 # 1. SIGKILL after two records, then a torn line as a kill inside write() would leave.
@@ -34,6 +35,11 @@ same "$work/serial.jsonl" "$work/killed.jsonl"
 "$BATCH" --pairs "$work/pairs.txt" --out "$work/int.jsonl" --threads 1 2> "$work/int.log" &
 pid=$!
 wait_lines "$work/int.jsonl" 1 $pid
+[[ -s $work/int.jsonl ]] || fail "the run ended before SIGINT could be sent"
+# A second process on the same output is refused while the first writes it.
+rc=0; "$BATCH" --pairs "$work/pairs.txt" --out "$work/int.jsonl" 2> "$work/second.log" || rc=$?
+[[ $rc == 3 ]] && grep -q "another process is writing it" "$work/second.log" ||
+  { cat "$work/second.log"; fail "a second process on the same --out exited $rc"; }
 kill -INT $pid 2> /dev/null || true
 rc=0; wait $pid || rc=$?
 [[ $rc == 130 ]] || fail "SIGINT gave exit code $rc, not 130"
