@@ -13,8 +13,8 @@
 #include "cloud_reading.h"
 #include "protocol.h"
 #include "scan_simulator.h"
+#include "uncertainty/peak_neighborhood.h"
 
-#include <pcl_phaser/core/peak_neighborhood.h>
 #include <pcl_phaser/phaser_registration.h>
 
 #include <pcl/common/transforms.h>

@@ -9,10 +9,10 @@
  *
  *   pcl_phaser_engine_benchmark [B ...]        (default: 16 32 64 128)
  */
-#include <pcl_phaser/core/so3_correlation.h>
-#include <pcl_phaser/core/so3_refinement.h>
-#include <pcl_phaser/core/spherical_grid.h>
-#include <pcl_phaser/core/spherical_harmonics.h>
+#include "so3/so3_correlation.h"
+#include "so3/so3_refinement.h"
+#include "sphere/spherical_grid.h"
+#include "sphere/spherical_harmonics.h"
 
 #include <algorithm>
 #include <chrono>

@@ -8,11 +8,11 @@
  */
 #pragma once
 
-#include <pcl_phaser/core/legendre.h>
-#include <pcl_phaser/core/so3_grid.h>
-#include <pcl_phaser/core/spherical_grid.h>
-#include <pcl_phaser/core/spherical_harmonics.h>
-#include <pcl_phaser/core/wigner.h>
+#include "so3/so3_grid.h"
+#include "so3/wigner.h"
+#include "sphere/legendre.h"
+#include "sphere/spherical_grid.h"
+#include "sphere/spherical_harmonics.h"
 
 #include <Eigen/Geometry>
 

@@ -6,7 +6,7 @@
  */
 #pragma once
 
-#include <pcl_phaser/core/spatial_correlation.h>
+#include "spatial/spatial_correlation.h"
 
 #include <cstring>
 #include <random>

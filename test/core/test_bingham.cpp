@@ -5,8 +5,9 @@
  * Bingham distribution: normalization constant against independent quadratures, MLE,
  * fit, sampler and rotation-vector covariance.
  */
+#include "support/error.h"
+
 #include <pcl_phaser/core/bingham.h>
-#include <pcl_phaser/core/error.h>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>

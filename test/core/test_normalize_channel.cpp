@@ -4,7 +4,7 @@
  *
  * The robust per-cloud channel normalization that precedes spectral fusion.
  */
-#include <pcl_phaser/core/spectral_fusion.h>
+#include "channels/spectral_fusion.h"
 
 #include <gtest/gtest.h>
 

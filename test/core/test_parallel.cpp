@@ -7,7 +7,7 @@
  * concurrent calls. (That a parked worker does not hold the caller up is a property of
  * the timing; doc/benchmarks.md 11.18 measures it with a busy core.)
  */
-#include "parallel.h"
+#include "support/parallel.h"
 
 #include <gtest/gtest.h>
 

@@ -6,10 +6,11 @@
  * error propagation through the sub-voxel peak (closed form and Monte Carlo), the
  * mismatch scaling, and the rotation block (Bingham spread + model error).
  */
+#include "spatial/spatial_correlation.h"
+#include "support/error.h"
+#include "uncertainty/peak_neighborhood.h"
+
 #include <pcl_phaser/core/bingham.h>
-#include <pcl_phaser/core/error.h>
-#include <pcl_phaser/core/peak_neighborhood.h>
-#include <pcl_phaser/core/spatial_correlation.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>

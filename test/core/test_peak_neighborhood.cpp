@@ -2,11 +2,10 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  */
+#include "so3/so3_correlation.h"
 #include "so3_test_support.h"
-
-#include <pcl_phaser/core/error.h>
-#include <pcl_phaser/core/peak_neighborhood.h>
-#include <pcl_phaser/core/so3_correlation.h>
+#include "support/error.h"
+#include "uncertainty/peak_neighborhood.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

@@ -4,7 +4,7 @@
  *
  * fitCovariance: the pose covariance from the point-to-plane fit of the samples.
  */
-#include <pcl_phaser/core/pose_covariance.h>
+#include "uncertainty/pose_covariance.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>

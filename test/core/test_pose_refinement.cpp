@@ -5,8 +5,8 @@
  * refinePose: Gauss-Newton on the point-to-plane distances that the verification
  * score rewards, from a pose near the truth; its trust region; too few matches.
  */
-#include <pcl_phaser/core/pose_refinement.h>
-#include <pcl_phaser/core/voxel_hash.h>
+#include "verification/pose_refinement.h"
+#include "verification/voxel_hash.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

@@ -5,7 +5,7 @@
  * The cues of ProjectionCenter::Automatic on synthetic direction sets with known
  * answers.
  */
-#include <pcl_phaser/core/projection_center.h>
+#include "pipeline/projection_center.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

@@ -5,13 +5,12 @@
  * Spec section 4.1 items 6-9: exact correlation, fast path = reference path, rotation
  * recovery with refinement (poles included), swapped inputs, zero padding.
  */
+#include "so3/so3_correlation.h"
+#include "so3/so3_refinement.h"
 #include "so3_test_support.h"
-
-#include <pcl_phaser/core/error.h>
-#include <pcl_phaser/core/peak_neighborhood.h>
-#include <pcl_phaser/core/so3_correlation.h>
-#include <pcl_phaser/core/so3_refinement.h>
-#include <pcl_phaser/core/spherical_grid.h>
+#include "sphere/spherical_grid.h"
+#include "support/error.h"
+#include "uncertainty/peak_neighborhood.h"
 
 #include <gtest/gtest.h>
 

@@ -6,11 +6,10 @@
  * energy-normalized Newton refinement (refineRotation with supports). Its effect on
  * tilted LiDAR pairs is tested with the simulator (test/simulator).
  */
+#include "so3/so3_correlation.h"
+#include "so3/so3_refinement.h"
 #include "so3_test_support.h"
-
-#include <pcl_phaser/core/error.h>
-#include <pcl_phaser/core/so3_correlation.h>
-#include <pcl_phaser/core/so3_refinement.h>
+#include "support/error.h"
 
 #include <gtest/gtest.h>
 

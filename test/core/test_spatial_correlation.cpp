@@ -5,10 +5,9 @@
  * Translation stage: r2c spectra, correlation, sub-voxel
  * peak (reference-implementation-notes.md section 4 and the bugs listed there).
  */
+#include "spatial/spatial_correlation.h"
 #include "spatial_test_support.h"
-
-#include <pcl_phaser/core/error.h>
-#include <pcl_phaser/core/spatial_correlation.h>
+#include "support/error.h"
 
 #include <gtest/gtest.h>
 

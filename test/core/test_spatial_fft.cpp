@@ -7,7 +7,7 @@
  * (nz/2+1) a multiple of 64 gathers the rows along x into a compact buffer), and its
  * independence of the thread count.
  */
-#include <pcl_phaser/core/spatial_correlation.h>
+#include "spatial/spatial_correlation.h"
 
 #include <gtest/gtest.h>
 

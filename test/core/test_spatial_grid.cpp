@@ -6,8 +6,7 @@
  * section 4 and the bugs listed there).
  */
 #include "spatial_test_support.h"
-
-#include <pcl_phaser/core/error.h>
+#include "support/error.h"
 
 #include <gtest/gtest.h>
 

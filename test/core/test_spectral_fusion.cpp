@@ -5,11 +5,10 @@
  * Spectral fusion (paper IV-D) on degree bands and radial frequency shells (the robust
  * channel normalization that precedes it: test_normalize_channel.cpp).
  */
+#include "channels/spectral_fusion.h"
+#include "so3/so3_correlation.h"
 #include "so3_test_support.h"
-
-#include <pcl_phaser/core/error.h>
-#include <pcl_phaser/core/so3_correlation.h>
-#include <pcl_phaser/core/spectral_fusion.h>
+#include "support/error.h"
 
 #include <gtest/gtest.h>
 

@@ -5,11 +5,10 @@
  * Spec section 4.1 items 1-3: quadrature weights, Legendre functions, SHT.
  */
 #include "so3_test_support.h"
-
-#include <pcl_phaser/core/error.h>
-#include <pcl_phaser/core/legendre.h>
-#include <pcl_phaser/core/spherical_grid.h>
-#include <pcl_phaser/core/spherical_harmonics.h>
+#include "sphere/legendre.h"
+#include "sphere/spherical_grid.h"
+#include "sphere/spherical_harmonics.h"
+#include "support/error.h"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>

@@ -2,11 +2,11 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  */
-#include <pcl_phaser/core/error.h>
-#include <pcl_phaser/core/spatial_correlation.h>
-#include <pcl_phaser/core/surface_orientation.h>
-#include <pcl_phaser/core/verification.h>
-#include <pcl_phaser/core/voxel_hash.h>
+#include "channels/surface_orientation.h"
+#include "spatial/spatial_correlation.h"
+#include "support/error.h"
+#include "verification/verification.h"
+#include "verification/voxel_hash.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

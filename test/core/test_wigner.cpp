@@ -4,12 +4,11 @@
  *
  * Spec section 4.1 items 4-5: Wigner d values, orthogonality, symmetries, rotation law.
  */
+#include "so3/so3_grid.h"
+#include "so3/wigner.h"
 #include "so3_test_support.h"
-
-#include <pcl_phaser/core/error.h>
-#include <pcl_phaser/core/so3_grid.h>
-#include <pcl_phaser/core/spherical_grid.h>
-#include <pcl_phaser/core/wigner.h>
+#include "sphere/spherical_grid.h"
+#include "support/error.h"
 
 #include <gtest/gtest.h>
 

@@ -8,10 +8,10 @@
  */
 #include "../registration/test_data.h"
 #include "cloud_reading.h"
+#include "pipeline/projection_center.h"
 #include "protocol.h"
 #include "real_data_support.h"
 
-#include <pcl_phaser/core/projection_center.h>
 #include <pcl_phaser/phaser_registration.h>
 
 #include <pcl/common/transforms.h>

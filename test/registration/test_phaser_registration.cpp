@@ -7,8 +7,8 @@
  * caching loop (bad inputs: test_phaser_registration_bad_input.cpp).
  */
 #include "registration_test_scene.h"
+#include "uncertainty/peak_neighborhood.h"
 
-#include <pcl_phaser/core/peak_neighborhood.h>
 #include <pcl_phaser/lazy_kdtree.h>
 #include <pcl_phaser/phaser_registration.h>
 

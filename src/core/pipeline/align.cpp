@@ -1,0 +1,289 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ *
+ * The engine's entry point in the caller's frames: centering, the projection-center
+ * choice, the target cache, guess composition and the convergence decision around the
+ * stages of pipeline.cpp.
+ */
+#include "pipeline/pipeline_internal.h"
+#include "pipeline/projection_center.h"
+
+#include <mutex>
+#include <new>
+
+namespace pcl::phaser {
+
+/** What a Target derives from its points: whether it looks like a LiDAR scan in its
+ *  sensor frame, and the model of the last projection center and parameters. */
+struct Target::Cache {
+  std::mutex mutex;
+  int sensor_centered = -1; ///< looksSensorCentered about the origin; < 0: not computed
+  std::shared_ptr<const TargetModel> model;
+  ProjectionCenter center = ProjectionCenter::SensorOrigin; ///< of model
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero(); ///< the projection center of model
+};
+
+Target::Target(Eigen::Matrix3Xd points, ChannelValues channels)
+    : points_(std::move(points))
+    , channels_(std::move(channels))
+    , cache_(std::make_unique<Cache>())
+{
+}
+
+Target::~Target() = default;
+
+/** The engine's access to a Target's channels and cache. */
+class TargetAccess {
+public:
+  static const ChannelValues& channels(const Target& t) { return t.channels_; }
+  static auto& cache(const Target& t) { return *t.cache_; }
+};
+
+namespace {
+
+/** Beyond this, float32 coordinates are quantized to more than 6 cm. */
+constexpr double kMaxCoordinate = 1e6;
+
+constexpr const char* kTooFar = "coordinates beyond 1e6 m: float32 resolution is worse "
+                                "than 6 cm there; shift the clouds first (e.g. "
+                                "pcl::demeanPointCloud)";
+
+/** Empty when a cloud can be registered, else why not. */
+std::string checkCloud(const Eigen::Matrix3Xd& points, const ChannelValues& channels,
+                       const char* which)
+{
+  if (points.cols() == 0)
+    return std::string("the ") + which + " cloud has no finite points";
+  if (!points.allFinite())
+    return std::string("the ") + which + " cloud has non-finite points";
+  if (points.cwiseAbs().maxCoeff() > kMaxCoordinate)
+    return kTooFar;
+  for (const Eigen::VectorXd& c : channels)
+    if (c.size() != points.cols())
+      return std::string("a channel of the ") + which + " cloud has " +
+             std::to_string(c.size()) + " values for " + std::to_string(points.cols()) +
+             " points";
+  return {};
+}
+
+/** Empty when the inputs of align() are legal, else the first problem. */
+std::string checkInputs(const Target& target, const SourceCloud& source,
+                        const Eigen::Matrix4d& guess, const PhaserParameters& params)
+{
+  std::string problem = validateParameters(params);
+  if (problem.empty() && !guess.allFinite())
+    problem = "the initial guess is not finite";
+  if (problem.empty())
+    problem = checkCloud(target.points(), TargetAccess::channels(target), "target");
+  if (problem.empty())
+    problem = checkCloud(source.points, source.channels, "source");
+  if (problem.empty() &&
+      source.channels.size() != TargetAccess::channels(target).size())
+    problem = "the source has " + std::to_string(source.channels.size()) +
+              " channels, the target " +
+              std::to_string(TargetAccess::channels(target).size());
+  return problem;
+}
+
+/** The parameters a target model depends on are those it was prepared with. */
+bool sameModel(const StageParameters& m, const StageParameters& p)
+{
+  return m.bandwidth == p.bandwidth && m.spatial_grid_size == p.spatial_grid_size &&
+         m.voxel_size == p.voxel_size && m.passes == p.passes &&
+         m.fusion_levels == p.fusion_levels &&
+         m.normalized_refinement == p.normalized_refinement &&
+         m.orientation_candidates == p.orientation_candidates &&
+         m.orientation_bandwidth == p.orientation_bandwidth &&
+         m.sensor_centered == p.sensor_centered;
+}
+
+/** The center both clouds are projected about; \a moved is the source moved by the
+ *  guess, whose sensor origin moves with it. */
+ProjectionCenter chooseCenter(const Target& target, const Eigen::Matrix3Xd& moved,
+                              const Eigen::Matrix4d& guess, ProjectionCenter requested)
+{
+  if (requested != ProjectionCenter::Automatic)
+    return requested;
+  auto& cache = TargetAccess::cache(target);
+  bool target_lidar = false;
+  {
+    std::lock_guard<std::mutex> lock(cache.mutex);
+    if (cache.sensor_centered < 0)
+      cache.sensor_centered =
+          looksSensorCentered(target.points(), Eigen::Vector3d::Zero()) ? 1 : 0;
+    target_lidar = cache.sensor_centered == 1;
+  }
+  return target_lidar && looksSensorCentered(moved, guess.topRightCorner<3, 1>())
+             ? ProjectionCenter::SensorOrigin
+             : ProjectionCenter::Centroid;
+}
+
+/** The target model for \a center and \a p, from the cache or prepared (then its
+ *  preparation time goes to \a target_ms), and its projection center. */
+std::shared_ptr<const TargetModel>
+targetModel(const Target& target, ProjectionCenter center, const StageParameters& p,
+            Eigen::Vector3d& offset, double& target_ms)
+{
+  auto& cache = TargetAccess::cache(target);
+  std::lock_guard<std::mutex> lock(cache.mutex);
+  if (!cache.model || cache.center != center || !sameModel(cache.model->params, p)) {
+    cache.model.reset();
+    Eigen::Matrix3Xd points = target.points();
+    cache.offset = center == ProjectionCenter::Centroid
+                       ? Eigen::Vector3d(points.rowwise().mean())
+                       : Eigen::Vector3d::Zero();
+    points.colwise() -= cache.offset;
+    cache.model = detail::prepareTarget(points, p, TargetAccess::channels(target));
+    cache.center = center;
+    target_ms = cache.model->preparation_ms;
+  }
+  offset = cache.offset;
+  return cache.model;
+}
+
+/** p_target = R (G p_source - c_s) + c_t + t, as a 4 x 4 matrix. */
+Eigen::Matrix4d callerFrame(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
+                            const Eigen::Vector3d& source_center,
+                            const Eigen::Vector3d& target_center,
+                            const Eigen::Matrix4d& guess)
+{
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  T.topLeftCorner<3, 3>() = R;
+  T.topRightCorner<3, 1>() = target_center + t - R * source_center;
+  return T * guess;
+}
+
+/** [a]x, the cross-product matrix of \a a. */
+Eigen::Matrix3d skew(const Eigen::Vector3d& a)
+{
+  Eigen::Matrix3d m;
+  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  return m;
+}
+
+/** \a cov (fitCovariance's error about the target's projection center: q -> Exp(omega)
+ *  q + nu0) for the caller's error omega, nu = t_true - t_est, the estimate's
+ *  translation being \a a from that center: nu = nu0 + omega x a. */
+Eigen::Matrix<double, 6, 6> aboutTranslation(const Eigen::Matrix<double, 6, 6>& cov,
+                                             const Eigen::Vector3d& a)
+{
+  Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Identity();
+  A.bottomLeftCorner<3, 3>() = -skew(a);
+  return A * cov * A.transpose();
+}
+
+/** Converged means verified: the final pose puts enough source samples on the target
+ *  and, about sensor origins, few in space the target saw through. About centroids (no
+ *  free-space test) a distinct translation peak is also required; scans taken meters
+ *  apart give wider peaks, so a clear overlap lets half the score suffice. */
+bool converged(const PhaserResult& r, const PhaserParameters& p)
+{
+  const bool peak = r.translation_score >= p.min_peak_score ||
+                    (r.translation_score >= 0.5 * p.min_peak_score &&
+                     r.normalized_overlap >= p.min_normalized_overlap);
+  return r.verified && (r.projection_center == ProjectionCenter::SensorOrigin || peak);
+}
+
+/** align() on legal inputs. \throws InvalidArgument when a cloud has no signal. */
+PhaserResult alignChecked(const Target& target, const SourceCloud& source,
+                          const Eigen::Matrix4d& guess, const PhaserParameters& params)
+{
+  Eigen::Matrix3Xd moved(3, source.points.cols());
+  for (Eigen::Index i = 0; i < moved.cols(); ++i)
+    moved.col(i) = guess.topLeftCorner<3, 3>() * source.points.col(i) +
+                   guess.topRightCorner<3, 1>();
+  const ProjectionCenter center =
+      chooseCenter(target, moved, guess, params.projection_center);
+  StageParameters p;
+  static_cast<PhaserParameters&>(p) = params;
+  p.sensor_centered = center == ProjectionCenter::SensorOrigin;
+  p.num_threads = resolveThreadCount(params.num_threads);
+  // The tilt pull the normalized refinement corrects comes from a scanner's
+  // field-of-view band, seen about its origin; about a centroid there is none.
+  p.normalized_refinement = params.normalized_refinement && p.sensor_centered;
+  Eigen::Vector3d target_center;
+  double target_ms = 0.0;
+  const std::shared_ptr<const TargetModel> model =
+      targetModel(target, center, p, target_center, target_ms);
+  const Eigen::Vector3d source_center =
+      center == ProjectionCenter::Centroid
+          ? Eigen::Vector3d(moved.rowwise().mean())
+          : Eigen::Vector3d(guess.topRightCorner<3, 1>());
+  moved.colwise() -= source_center;
+  PhaserResult r = detail::estimateCentered(*model, moved, p, source.channels);
+  r.target_ms = target_ms;
+  r.projection_center = center;
+  r.transformation =
+      callerFrame(r.rotation, r.translation, source_center, target_center, guess);
+  if (!r.transformation.allFinite())
+    throw InvalidArgument("the estimate is not finite");
+  r.lever_arm = r.rotation * source_center;
+  r.fit_covariance = aboutTranslation(
+      r.fit_covariance, r.transformation.topRightCorner<3, 1>() - target_center);
+  for (RotationHypothesis& h : r.hypotheses)
+    h.transformation =
+        callerFrame(h.rotation, h.translation, source_center, target_center, guess);
+  r.converged = converged(r, params);
+  return r;
+}
+
+PhaserResult failed(const Eigen::Matrix4d& guess, std::string reason)
+{
+  PhaserResult r;
+  r.transformation = guess;
+  r.error = std::move(reason);
+  return r;
+}
+
+} // namespace
+
+PhaserResult align(const Target& target, const SourceCloud& source,
+                   const Eigen::Matrix4d& guess, const PhaserParameters& params)
+{
+  const std::string problem = checkInputs(target, source, guess, params);
+  if (!problem.empty())
+    return failed(guess, problem);
+  try {
+    return alignChecked(target, source, guess, params);
+  } catch (const InvalidArgument& e) {
+    return failed(guess, e.what());
+  } catch (const std::bad_alloc&) {
+    return failed(guess, "out of memory (reduce the bandwidth or the grid size)");
+  }
+}
+
+BinghamDistribution rotationUncertainty(const PhaserResult& result)
+{
+  BinghamDistribution b; // uniform: what is known without an estimate
+  if (!result.rotation_samples.empty()) {
+    try {
+      b = fitBingham(result.rotation_samples, result.rotation_weights);
+    } catch (const InvalidArgument&) { // all weights zero: a flat block
+    }
+  }
+  return b;
+}
+
+Eigen::Matrix<double, 6, 6> poseCovariance(const PhaserResult& result,
+                                           const BinghamDistribution& rotation,
+                                           int bandwidth)
+{
+  Eigen::Matrix<double, 6, 6> cov = Eigen::Matrix<double, 6, 6>::Zero();
+  if (!result.converged)
+    return cov;
+  if (!result.fit_covariance.isZero())
+    return result.fit_covariance;
+  const Eigen::Matrix3d rot = rotationCovariance(rotation, bandwidth);
+  // t_est = c_t + delta - R c_s, R_true = Exp(omega) R_est: nu = d_delta + [R c_s]x
+  // omega.
+  const Eigen::Matrix3d lever = skew(result.lever_arm);
+  cov.topLeftCorner<3, 3>() = rot;
+  cov.topRightCorner<3, 3>() = rot * lever.transpose();
+  cov.bottomLeftCorner<3, 3>() = lever * rot;
+  cov.bottomRightCorner<3, 3>() =
+      result.translation_covariance + lever * rot * lever.transpose();
+  return cov;
+}
+
+} // namespace pcl::phaser

@@ -1,0 +1,136 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ */
+#include "verification/pose_refinement.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <limits>
+
+namespace pcl::phaser {
+
+namespace {
+
+/** The steps stop once one turns less than this (radians, 0.006 deg)... */
+constexpr double kMinStepAngle = 1e-4;
+/** ... and moves less than this (meters). */
+constexpr double kMinStepShift = 1e-3;
+
+/** exp of the skew matrix of \a w (Rodrigues). */
+Eigen::Matrix3d expSo3(const Eigen::Vector3d& w)
+{
+  const double angle = w.norm();
+  if (angle < 1e-12)
+    return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
+}
+
+/** One Gauss-Newton sweep at \a pose: the normal equations (H, g) of the samples'
+ *  weighted point-to-plane distances. Returns the number of matches. */
+int sweep(const PointIndex& target, const VerificationSamples& s, const RigidPose& pose,
+          Eigen::Matrix<double, 6, 6>& H, Eigen::Matrix<double, 6, 1>& g)
+{
+  const bool with_normals = s.normals.cols() == s.points.cols();
+  const double r2 = target.radius() * target.radius();
+  H.setZero();
+  g.setZero();
+  int matched = 0;
+  for (Eigen::Index i = 0; i < s.points.cols(); ++i) {
+    const Eigen::Vector3d q = pose.R * s.points.col(i) + pose.t;
+    const Eigen::Vector3d n_s = with_normals
+                                    ? Eigen::Vector3d(pose.R * s.normals.col(i))
+                                    : Eigen::Vector3d::Zero();
+    const Eigen::Index k = target.nearest(q, n_s, kMinNormalCosine);
+    if (k < 0)
+      continue;
+    const Eigen::Vector3d n = target.normal(k);
+    if (n.isZero())
+      continue;
+    const Eigen::Vector3d p = target.point(k);
+    const double closeness = 1.0 - (q - p).squaredNorm() / r2;
+    const double w = s.weights[i] * closeness * closeness;
+    Eigen::Matrix<double, 6, 1> J;
+    J << q.cross(n), n;
+    const double e = n.dot(q - p);
+    H += w * J * J.transpose();
+    g += w * e * J;
+    ++matched;
+  }
+  return matched;
+}
+
+/** One damped Gauss-Newton step of \a pose against \a target, its increment (rotation
+ *  vector, then translation) into \a delta. False, with \a pose unchanged, when fewer
+ *  than six samples match or the step is not finite. */
+bool step(const PointIndex& target, const VerificationSamples& s, RigidPose& pose,
+          Eigen::Matrix<double, 6, 1>& delta)
+{
+  Eigen::Matrix<double, 6, 6> H;
+  Eigen::Matrix<double, 6, 1> g;
+  if (sweep(target, s, pose, H, g) < 6)
+    return false;
+  // A little damping keeps directions the matches leave free (ground only, one wall
+  // direction) where they are.
+  H.diagonal().array() += 1e-6 * H.trace() + 1e-12;
+  delta = -H.ldlt().solve(g);
+  if (!delta.allFinite())
+    return false;
+  const Eigen::Matrix3d dR = expSo3(delta.head<3>());
+  pose.R = dR * pose.R;
+  pose.t = dR * pose.t + delta.tail<3>();
+  return true;
+}
+
+/** refinePose, abandoned as soon as a step leaves the trust region of \a max_angle
+ *  (radians) and \a max_shift (meters) around its center: \a start, or the pose a
+ *  \a reach step put it at (that step skipped if it fails or leaves the region around
+ *  \a start). The center is returned when a step leaves. */
+RigidPose refine(const PointIndex& target, const VerificationSamples& s,
+                 const RigidPose& start, int iterations, double max_angle,
+                 double max_shift, const PointIndex* reach)
+{
+  // The source's origin (its sensor) lands at t: how far it moved.
+  const auto outside = [&](const RigidPose& pose, const RigidPose& center) {
+    const Eigen::AngleAxisd turn(pose.R * center.R.transpose());
+    return std::abs(turn.angle()) > max_angle || (pose.t - center.t).norm() > max_shift;
+  };
+  Eigen::Matrix<double, 6, 1> delta;
+  RigidPose center = start;
+  if (reach) {
+    RigidPose reached = start;
+    if (step(*reach, s, reached, delta) && !outside(reached, start))
+      center = reached;
+  }
+  RigidPose pose = center;
+  for (int it = 0; it < iterations; ++it) {
+    if (!step(target, s, pose, delta))
+      break;
+    if (outside(pose, center))
+      return center;
+    if (delta.head<3>().norm() < kMinStepAngle &&
+        delta.tail<3>().norm() < kMinStepShift)
+      break;
+  }
+  return pose;
+}
+
+} // namespace
+
+RigidPose refinePose(const PointIndex& target, const VerificationSamples& s,
+                     const RigidPose& start, int iterations)
+{
+  const double unbounded = std::numeric_limits<double>::infinity();
+  return refine(target, s, start, iterations, unbounded, unbounded, nullptr);
+}
+
+RigidPose refinePoseWithin(const PointIndex& target, const VerificationSamples& samples,
+                           const RigidPose& start, int iterations, double max_angle,
+                           double max_shift, const PointIndex* reach)
+{
+  return refine(target, samples, start, iterations, max_angle, max_shift, reach);
+}
+
+} // namespace pcl::phaser
