@@ -10,12 +10,12 @@
 // valid files, header number sweeps) it segfaulted on 368 (random bytes, a truncated or
 // missing FIELDS line, ...), aborted on 16 (PLY asserts: more vertices than the
 // obj_info grid, an indented obj_info line, uchar blue before red) and asked for more
-// than 1 GiB on 38 (point or vertex counts that lie). A guard for the triggers named
-// in issue 14 (a 73-line prototype) still let 67 of the segfaults and 13 of the
+// than 1 GiB on 38 (point or vertex counts that lie). A guard for the named triggers
+// (a 73-line prototype) still let 67 of the segfaults and 13 of the
 // runaway allocations through: a guard has to know every trigger and follow every PCL
 // release, as the 1,980 lines of header parsing it replaces did. The child turns any
 // crash, abort, runaway allocation or hang into a clean error, whatever the trigger,
-// for one fork and one copy of the cloud through a pipe per file (doc/benchmarks.md).
+// for one fork and one copy of the cloud through a pipe per file (doc/benchmarks.md, *Reading cloud files*).
 #include "cloud_reading.h"
 
 #include <pcl/common/io.h>
