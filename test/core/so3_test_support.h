@@ -8,20 +8,75 @@
  */
 #pragma once
 
-#include "so3/so3_grid.h"
+#include "so3/so3_correlation.h"
+#include "so3/so3_correlation_grid.h"
 #include "so3/wigner.h"
-#include "sphere/legendre.h"
 #include "sphere/spherical_grid.h"
 #include "sphere/spherical_harmonics.h"
+#include "support/error.h"
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace pcl::phaser {
+/** Step from degree l to l+1 of the Kostelec-Rockmore recurrence for orders (m', m),
+ *  l >= max(|m'|, |m|), computed directly: the reference for WignerStepTable. */
+inline WignerStep wignerStep(int l, int mp, int m)
+{
+  if (l == 0) // only m = m' = 0: d^1_00 = cos(beta)
+    return {1.0, 0.0, 0.0};
+  const double l1 = l + 1.0;
+  const double mm = static_cast<double>(m) * m;
+  const double mpmp = static_cast<double>(mp) * mp;
+  const double r = std::sqrt((l1 * l1 - mm) * (l1 * l1 - mpmp));
+  const double a = l1 * (2.0 * l + 1.0) / r;
+  const double cc = -static_cast<double>(m) * mp / (static_cast<double>(l) * l1);
+  const double ll = static_cast<double>(l) * l;
+  const double b = l1 * std::sqrt(std::max(0.0, (ll - mm) * (ll - mpmp))) / (l * r);
+  return {a, a * cc, b};
+}
+
+/** d^l_{m'm}(beta) (Wigner/Sakurai convention, |d| <= 1) for l = 0..B-1 by the direct
+ *  recurrence; entries with l < max(|m'|,|m|) are zero. beta in [0, pi]. */
+inline std::vector<double> wignerSmallD(int mp, int m, int bandwidth, double beta)
+{
+  checkBandwidth(bandwidth);
+  std::vector<double> d(bandwidth, 0.0);
+  const int L = std::max(std::abs(mp), std::abs(m));
+  if (L >= bandwidth)
+    return d;
+  const std::vector<double> lf = logFactorials(2 * L + 1);
+  const WignerStart start = wignerStart(mp, m, lf);
+  const double cb = std::cos(beta);
+  double prev =
+      start.value(std::log(std::cos(0.5 * beta)), std::log(std::sin(0.5 * beta)));
+  double prev2 = 0.0;
+  for (int l = L; l < bandwidth; ++l) {
+    d[l] = prev;
+    const WignerStep st = wignerStep(l, mp, m);
+    const double next = (st.a * cb + st.ac) * prev - st.b * prev2;
+    prev2 = prev;
+    prev = next;
+  }
+  return d;
+}
+
+/** Exact C(R) of one spectrum pair at arbitrary rotations (evaluateCorrelations). */
+inline std::vector<double>
+evaluateCorrelation(const SphericalSpectrum& target, const SphericalSpectrum& source,
+                    const std::vector<Eigen::Matrix3d>& rotations, int num_threads = 1)
+{
+  return std::move(
+      evaluateCorrelations({SpectrumPair{&target, &source}}, rotations, num_threads)
+          .front());
+}
+
 namespace test {
 
 using Complex = std::complex<double>;

@@ -45,4 +45,12 @@ inline bool bitIdentical(const SpatialRealArray& a, const SpatialRealArray& b)
          std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
+/** correlateSpectra followed by findSpatialPeak. */
+inline SpatialCorrelationResult
+correlateSpatial(const SpatialSpectrum& target, const SpatialSpectrum& source,
+                 SpatialPeakRefinement refinement = SpatialPeakRefinement::kGaussian)
+{
+  return findSpatialPeak(correlateSpectra(target, source), refinement);
+}
+
 } // namespace pcl::phaser::test

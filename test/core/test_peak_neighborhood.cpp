@@ -90,35 +90,3 @@ TEST(PeakNeighborhood, DistinctPeaksOfASymmetricScene)
     EXPECT_EQ(C(m1), C(peaks[0])); // the global maximum is the first distinct peak
   }
 }
-
-TEST(PeakNeighborhood, TranslationGaussianRecoversABlob)
-{
-  SpatialVolume v;
-  v.grid.dims = Eigen::Vector3i(16, 20, 12);
-  v.grid.voxel_size = 0.5;
-  v.grid.origin = Eigen::Vector3d(0.1, -0.2, 0.0);
-  v.values.assign(v.grid.size(), 0.0);
-  const Eigen::Vector3d mu(1.2, -1.6, 0.6); // meters, relative to the origin's lag 0
-  Eigen::Matrix3d sigma;
-  sigma << 0.30, 0.05, 0.00, 0.05, 0.20, -0.03, 0.00, -0.03, 0.15;
-  const Eigen::Matrix3d info = sigma.inverse();
-  Eigen::Vector3i peak = Eigen::Vector3i::Zero();
-  double best = -1.0;
-  for (int x = 0; x < 16; ++x)
-    for (int y = 0; y < 20; ++y)
-      for (int z = 0; z < 12; ++z) {
-        Eigen::Vector3d lag(x > 8 ? x - 16 : x, y > 10 ? y - 20 : y,
-                            z > 6 ? z - 12 : z);
-        const Eigen::Vector3d d = lag * 0.5 - mu;
-        const double val = std::exp(-0.5 * d.dot(info * d));
-        v.values[v.grid.flatIndex(x, y, z)] = val;
-        if (val > best) {
-          best = val;
-          peak = Eigen::Vector3i(x, y, z);
-        }
-      }
-  const TranslationGaussian g = translationGaussian(v, peak, 4);
-  EXPECT_LT((g.mean - (v.grid.origin + mu)).norm(), 0.02);
-  EXPECT_LT((g.covariance - sigma).norm(), 0.1 * sigma.norm());
-  EXPECT_THROW(translationGaussian(v, peak, 0), InvalidArgument);
-}

@@ -4,6 +4,7 @@
  *
  * fitCovariance: the pose covariance from the point-to-plane fit of the samples.
  */
+#include "point_test_support.h"
 #include "uncertainty/pose_covariance.h"
 
 #include <Eigen/Cholesky>
@@ -38,12 +39,8 @@ void corner(double step, bool walls, double noise, unsigned seed,
       p.emplace_back(u, noise * n01(rng), v);
       n.emplace_back(0, 1, 0);
     }
-  points.resize(3, static_cast<Eigen::Index>(p.size()));
-  normals.resize(3, static_cast<Eigen::Index>(p.size()));
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    points.col(static_cast<Eigen::Index>(i)) = p[i];
-    normals.col(static_cast<Eigen::Index>(i)) = n[i];
-  }
+  points = test::toMatrix(p);
+  normals = test::toMatrix(n);
 }
 
 struct Scene {

@@ -5,6 +5,7 @@
  * refinePose: Gauss-Newton on the point-to-plane distances that the verification
  * score rewards, from a pose near the truth; its trust region; too few matches.
  */
+#include "point_test_support.h"
 #include "verification/pose_refinement.h"
 #include "verification/voxel_hash.h"
 
@@ -45,12 +46,8 @@ void corner(double h, Eigen::Matrix3Xd& points, Eigen::Matrix3Xd& normals)
       p.emplace_back(1.0, a, z);
       n.emplace_back(-1.0, 0.0, 0.0);
     }
-  points.resize(3, static_cast<Eigen::Index>(p.size()));
-  normals.resize(3, points.cols());
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    points.col(static_cast<Eigen::Index>(i)) = p[i];
-    normals.col(static_cast<Eigen::Index>(i)) = n[i];
-  }
+  points = test::toMatrix(p);
+  normals = test::toMatrix(n);
 }
 
 struct Scene {

@@ -5,7 +5,6 @@
  * Spec section 4.1 items 1-3: quadrature weights, Legendre functions, SHT.
  */
 #include "so3_test_support.h"
-#include "sphere/legendre.h"
 #include "sphere/spherical_grid.h"
 #include "sphere/spherical_harmonics.h"
 #include "support/error.h"

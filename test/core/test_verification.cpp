@@ -53,7 +53,8 @@ int expectNearestAsBruteForce(const Eigen::Matrix3Xd& points,
   for (Eigen::Index q = 0; q < queries.cols(); ++q) {
     const double brute =
         (points.colwise() - queries.col(q)).colwise().squaredNorm().minCoeff();
-    const double got = index.nearestSquaredDistance(queries.col(q));
+    const double got =
+        index.nearestSquaredDistance(queries.col(q), Eigen::Vector3d::Zero(), 0.0);
     if (brute <= radius * radius) {
       EXPECT_NEAR(got, brute, 1e-12);
       ++found;
@@ -137,10 +138,12 @@ TEST(PointIndex, ClustersFarApartOnEveryAxisMatchBruteForce)
 TEST(PointIndex, EmptyAndNonFiniteQueriesFindNothing)
 {
   const PointIndex empty(Eigen::Matrix3Xd(3, 0), 1.0);
-  EXPECT_TRUE(std::isinf(empty.nearestSquaredDistance(Eigen::Vector3d::Zero())));
+  EXPECT_TRUE(std::isinf(empty.nearestSquaredDistance(Eigen::Vector3d::Zero(),
+                                                      Eigen::Vector3d::Zero(), 0.0)));
   const PointIndex one(Eigen::Matrix3Xd::Zero(3, 1), 1.0);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_TRUE(std::isinf(one.nearestSquaredDistance(Eigen::Vector3d(nan, 0, 0))));
+  EXPECT_TRUE(std::isinf(one.nearestSquaredDistance(Eigen::Vector3d(nan, 0, 0),
+                                                    Eigen::Vector3d::Zero(), 0.0)));
   EXPECT_THROW(groupByVoxel(Eigen::Matrix3Xd::Zero(3, 1), 0.0), InvalidArgument);
 }
 
@@ -194,14 +197,18 @@ TEST(VerifyPose, RightPoseVerifiesAndAShiftedOneDoesNot)
   // source = R^T (target - t): the pose (R, t) maps it back exactly.
   const Eigen::Matrix3Xd source = R.transpose() * (target.colwise() - t);
   const PointIndex index(target, 0.3);
-  const PoseVerification right = verifyPose(index, source, R, t);
+  const auto unweighted = [](const Eigen::Matrix3Xd& points) {
+    return VerificationSamples{points, Eigen::VectorXd::Ones(points.cols()), {}};
+  };
+  const PoseVerification right = verifyPose(index, unweighted(source), R, t);
   EXPECT_DOUBLE_EQ(right.inlier_fraction, 1.0);
   EXPECT_NEAR(right.score, 1.0, 1e-9);
   const PoseVerification wrong =
-      verifyPose(index, source, R, t + Eigen::Vector3d(30, 0, 0));
+      verifyPose(index, unweighted(source), R, t + Eigen::Vector3d(30, 0, 0));
   EXPECT_EQ(wrong.inlier_fraction, 0.0);
   EXPECT_EQ(wrong.score, 0.0);
-  const PoseVerification none = verifyPose(index, Eigen::Matrix3Xd(3, 0), R, t);
+  const PoseVerification none =
+      verifyPose(index, unweighted(Eigen::Matrix3Xd(3, 0)), R, t);
   EXPECT_EQ(none.inlier_fraction, 0.0);
   EXPECT_THROW(verifyPose(index, {source, Eigen::VectorXd::Ones(3), {}}, R, t),
                InvalidArgument);

@@ -4,7 +4,7 @@
  *
  * Spec section 4.1 items 4-5: Wigner d values, orthogonality, symmetries, rotation law.
  */
-#include "so3/so3_grid.h"
+#include "so3/so3_correlation_grid.h"
 #include "so3/wigner.h"
 #include "so3_test_support.h"
 #include "sphere/spherical_grid.h"

@@ -16,27 +16,17 @@
 
 namespace pcl::phaser {
 
-/** \brief Each channel mapped robustly to a common scale (normalizeChannel: median
- *  removed, divided by the scaled MAD, clamped), so raw uint16 reflectivity cannot
- * drown meters of range. Per cloud. \throws InvalidArgument if a size differs from \a
- * n. */
+/** \brief normalizeChannel of each channel. \throws InvalidArgument if a channel's
+ *  size differs from \a n. */
 ChannelValues normalizeChannels(const ChannelValues& channels, Eigen::Index n);
 
-/** \brief The fused spherical spectrum of a cloud: range (|p|) and every channel binned
- *  on the sphere about the points' origin (shared cell lookup), one SHT each, fused by
- *  the Laplacian pyramid over spherical degree (fuseSpherical). With no channels it is
- *  the range spectrum.
- *  \param[in] points 3 x n, relative to the projection center
- *  \param[in] channels normalized channel values (may be empty)
- *  \param[in] bandwidth B
- *  \param[in] levels pyramid levels
- *  \param[in] num_threads worker threads
+/** \brief The fused spherical spectrum of a cloud (3 x n, relative to the projection
+ *  center): range |p| and every normalized channel binned on the sphere, transformed
+ *  and fused over \a levels (fuseSpherical); the range spectrum without channels.
  *  \param[out] observed_cells cells with at least one point
- *  \param[out] sampling_ms, sht_ms time spent binning and transforming
- *  \param[out] support when given, the support of the signal for the normalized
- *  refinement (refineRotation): the observed cells and the energy of the signal on
- *  them (the squared de-meaned range, or with channels the squared fused function;
- *  two or three more transforms) */
+ *  \param[out] sampling_ms, sht_ms time added for binning and transforming
+ *  \param[out] support if given, for refineRotation: the observed cells and the squared
+ *  correlated signal (range, or the fused function) on them */
 SphericalSpectrum cloudSphericalSpectrum(const Eigen::Matrix3Xd& points,
                                          const ChannelValues& channels, int bandwidth,
                                          int levels, int num_threads,

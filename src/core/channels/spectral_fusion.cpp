@@ -1,9 +1,6 @@
 /*
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
- *
- * Laplacian-pyramid fusion of channel spectra (paper IV-D) on the true frequency
- * structure: spherical degree bands.
  */
 #include "channels/spectral_fusion.h"
 #include "support/error.h"
@@ -78,18 +75,14 @@ void checkSpherical(const std::vector<SphericalSpectrum>& channels,
       throw InvalidArgument("spherical fusion: channel spectra differ in bandwidth");
 }
 
-/** Channels with at least one non-zero coefficient, as indices. A channel the cloud
- *  does not have (all zero, e.g. reflectivity of a KITTI scan, or a constant channel
- *  after normalizeChannel) never wins a selection, but in the mean it would scale the
- *  averaged band down by (present / K) against the selected bands, so it is left out.
- *  With no channel present the result is zero anyway and all are kept. */
-template <typename Spectrum, typename IsZero>
-std::vector<std::size_t> presentChannels(const std::vector<Spectrum>& channels,
-                                         const IsZero& is_zero)
+/** Indices of the channels with a non-zero coefficient (all of them when none has):
+ *  an absent channel would scale the averaged band down against the selected ones. */
+std::vector<std::size_t>
+presentSpherical(const std::vector<SphericalSpectrum>& channels)
 {
   std::vector<std::size_t> present;
   for (std::size_t c = 0; c < channels.size(); ++c)
-    if (!is_zero(channels[c]))
+    if (!channels[c].isZero(0.0))
       present.push_back(c);
   if (present.empty())
     for (std::size_t c = 0; c < channels.size(); ++c)
@@ -97,11 +90,20 @@ std::vector<std::size_t> presentChannels(const std::vector<Spectrum>& channels,
   return present;
 }
 
-std::vector<std::size_t>
-presentSpherical(const std::vector<SphericalSpectrum>& channels)
+/** Energy of each degree of a real function's spectrum, |F(l,0)|^2 + 2 sum_{m>=1}
+ *  |F(l,m)|^2: rotation-invariant, as a rotation mixes a degree's orders unitarily. */
+std::vector<double> sphericalDegreeEnergy(const SphericalSpectrum& F)
 {
-  return presentChannels(channels,
-                         [](const SphericalSpectrum& F) { return F.isZero(0.0); });
+  const Eigen::Index B = std::min(F.rows(), F.cols());
+  std::vector<double> energy(static_cast<std::size_t>(F.rows()), 0.0);
+  for (Eigen::Index l = 0; l < B; ++l) {
+    double e = std::norm(F(l, 0));
+    // m > 0 stands for the orders +m and -m, which have equal magnitude.
+    for (Eigen::Index m = 1; m <= l; ++m)
+      e += 2.0 * std::norm(F(l, m));
+    energy[l] = e;
+  }
+  return energy;
 }
 
 /** The choice per degree as an index into \a present (-1 = averaged). */
@@ -112,9 +114,7 @@ std::vector<int> sphericalChoice(const std::vector<SphericalSpectrum>& all,
   const int B = static_cast<int>(all.front().rows());
   const std::size_t K = present.size();
   // degree[l * K + c]: energy of channel c at degree l; window[c]: its sum over the
-  // degrees l - r .. l + r. Only degree energies enter, so the choice is a function of
-  // rotation-invariant quantities and is the same for a function and any rotation of
-  // it (a per-(l, m) rule would not be: |F(l, m)| changes when the function rotates).
+  // degrees l - r .. l + r (reaching into neighboring bands).
   std::vector<double> degree(static_cast<std::size_t>(B) * K);
   for (std::size_t c = 0; c < K; ++c) {
     const std::vector<double> e = sphericalDegreeEnergy(all[present[c]]);
@@ -128,8 +128,6 @@ std::vector<int> sphericalChoice(const std::vector<SphericalSpectrum>& all,
     if (bandOfDegree(l, B, parameters.levels) == 0)
       continue;
     std::fill(window.begin(), window.end(), 0.0);
-    // The window may reach into neighboring bands: it only measures activity, the
-    // choice itself is still made (and applied) degree by degree.
     for (int d = std::max(0, l - r); d <= std::min(B - 1, l + r); ++d)
       for (std::size_t c = 0; c < K; ++c)
         window[c] += degree[d * K + c];
@@ -161,20 +159,6 @@ int sphericalBand(int degree, int bandwidth, int levels)
                           std::to_string(degree) + ", bandwidth " +
                           std::to_string(bandwidth));
   return bandOfDegree(degree, bandwidth, levels);
-}
-
-std::vector<double> sphericalDegreeEnergy(const SphericalSpectrum& F)
-{
-  const Eigen::Index B = std::min(F.rows(), F.cols());
-  std::vector<double> energy(static_cast<std::size_t>(F.rows()), 0.0);
-  for (Eigen::Index l = 0; l < B; ++l) {
-    double e = std::norm(F(l, 0));
-    // m > 0 stands for the orders +m and -m, which have equal magnitude.
-    for (Eigen::Index m = 1; m <= l; ++m)
-      e += 2.0 * std::norm(F(l, m));
-    energy[l] = e;
-  }
-  return energy;
 }
 
 std::vector<int> selectSphericalChannels(const std::vector<SphericalSpectrum>& channels,

@@ -22,27 +22,22 @@ struct SurfacePatches {
   Eigen::VectorXd weights;        ///< planarity in [0, 1], m
   std::vector<std::int64_t> keys; ///< voxelKey of each patch's voxel, m
   double voxel_size = 0.0;        ///< edge of the voxels, meters
-  /** \brief Median over the patches of the RMS distance of their points from their
-   *  plane (sqrt(l0 / n)), meters: the surface thickness that noise gives a scan. 0
-   *  without patches. */
+  /** \brief Median RMS distance of the patches' points from their plane, sqrt(l0 / n),
+   *  meters (0 without patches). */
   double thickness = 0.0;
 };
 
-/** \brief The planar patches of \a points in voxels of edge \a voxel_size (meters,
- *  > 0) that hold at least \a min_points points (>= 3).
- *  \param[in] viewpoint normals are turned to face it (the sensor), so a wall seen
- *  from the same side gives the same normal in both scans */
+/** \brief The planar patches of \a points in voxels of edge \a voxel_size (meters)
+ *  holding at least \a min_points (>= 3) points, normals turned towards \a viewpoint.
+ */
 SurfacePatches surfacePatches(const Eigen::Matrix3Xd& points, double voxel_size,
                               const Eigen::Vector3d& viewpoint, int min_points = 6);
 
-/** \brief Spectrum of the orientation histogram of \a patches on the sphere (an
- *  extended Gaussian image): each patch adds its weight to the Driscoll-Healy cell of
- *  its normal; the square root of each cell's sum (so the ground does not drown the
- *  walls), de-meaned over the sphere, is transformed. The histogram does not move with
- *  the sensor: for two scans of one place it is the same function up to the relative
- *  rotation, q_t = R q_s, and the SO(3) correlation of the two spectra peaks at R.
- *  \param[in] bandwidth B (1..256) \param[in] num_threads worker threads
- *  \throws InvalidArgument on an illegal bandwidth */
+/** \brief Spectrum of the orientation histogram of \a patches (an extended Gaussian
+ *  image): the square root of the patch weights summed per cell of their normal, per
+ *  unit solid angle, de-meaned and low-passed. It does not move with the sensor, so
+ *  the SO(3) correlation of two scans' spectra peaks at their relative rotation.
+ *  \throws InvalidArgument on a bandwidth outside 1..256 */
 SphericalSpectrum orientationSpectrum(const SurfacePatches& patches, int bandwidth,
                                       int num_threads = 1);
 
@@ -51,14 +46,11 @@ SphericalSpectrum orientationSpectrum(const SurfacePatches& patches, int bandwid
 Eigen::Matrix3Xd patchNormalsAt(const SurfacePatches& patches,
                                 const Eigen::Matrix3Xd& points);
 
-/** \brief Weights of verification samples that balance surface orientations, as
- *  normal-space sampling does for ICP (Rusinkiewicz and Levoy, 3DIM 2001): each sample
- *  takes the normal of the patch whose voxel holds it, samples are counted per
- *  orientation cell (a 8 x 8 Driscoll-Healy grid; samples without a patch form one more
- *  class), and a sample weighs 1 / sqrt(count of its class), normalized to sum 1. So
- *  the ground, a large share of every outdoor scan that matches under any yaw, no
- *  longer outvotes the walls that fix the pose.
- *  \param[in] patches from surfacePatches \param[in] samples 3 x m */
+/** \brief Weights of \a samples (3 x m) that balance surface orientations, as
+ *  normal-space sampling does for ICP: samples are counted per cell (8 x 8) of their
+ *  patch's normal, those without a patch in one more class, and each weighs 1 / max(its
+ *  class's count, 2 % of m), normalized to sum 1, so the ground no longer outvotes the
+ *  walls that fix the pose. */
 Eigen::VectorXd orientationWeights(const SurfacePatches& patches,
                                    const Eigen::Matrix3Xd& samples);
 

@@ -47,77 +47,34 @@ void checkSpectrum(const SphericalSpectrum& F, int B, const char* what)
                           std::to_string(F.rows()) + " x " + std::to_string(F.cols()));
 }
 
-/** Per-thread scratch of the Wigner stage: three d rows and two accumulators, split
- * into real and imaginary parts so the inner loops vectorize. */
+/** Per-thread scratch of the Wigner stage: three d rows, the two coefficient
+ *  sequences (B each) and their two accumulators (J each), real and imaginary parts
+ *  apart so the inner loops vectorize. */
 struct WignerScratch {
   explicit WignerScratch(int J, int B)
       : d0(J)
       , d1(J)
       , d2(J)
-      , acc1_re(J)
-      , acc1_im(J)
-      , acc2_re(J)
-      , acc2_im(J)
-      , c1(B)
-      , c2(B)
+      , acc_re(2 * J)
+      , acc_im(2 * J)
+      , c(2 * B)
   {
   }
-  std::vector<double> d0, d1, d2, acc1_re, acc1_im, acc2_re, acc2_im;
-  std::vector<Complex> c1, c2;
+  std::vector<double> d0, d1, d2, acc_re, acc_im;
+  std::vector<Complex> c;
 };
 
-/** The Wigner stage for one order pair (m', m): runs the l-recurrence over all beta_j
- *  (j < J) and accumulates the two half-plane sums. Plain arrays only, so the function
- * can be compiled twice and picked at run time: AVX2 where the CPU has it (4 doubles
- * per instruction), SSE2 elsewhere. No -march=native anywhere (see the integration
- * notes). The choice depends on the machine only, never on the thread count. */
+/** The l-recurrence for one order pair (m', m) at K values of beta (their cosines in
+ *  \a cb), shared by P coefficient sequences (c holds P rows of B complex values):
+ *  acc_p,k = sum_l c_p,l d^l(beta_k), real and imaginary parts apart (P rows of K).
+ *  Each sequence sees the same operations in the same order as if it were alone.
+ *  Plain arrays, so the function is compiled twice and picked at run time (AVX2 where
+ *  the CPU has it, no FMA): the choice depends on the machine only. */
 [[gnu::target_clones("avx2", "default")]] void
-wignerAccumulate(const WignerStepTable& steps, int L, int B, int J, int mp, int m,
-                 const double* __restrict cb, const double* __restrict c1,
-                 const double* __restrict c2, double* __restrict d0,
-                 double* __restrict d1, double* __restrict d2, double* __restrict a1r,
-                 double* __restrict a1i, double* __restrict a2r, double* __restrict a2i)
-{
-  double* dprev = d0;
-  double* dpp = d1;
-  double* dnext = d2;
-  for (int j = 0; j < J; ++j) {
-    a1r[j] = a1i[j] = a2r[j] = a2i[j] = 0.0;
-    dpp[j] =
-        0.0; // d^{L-1} := 0 (its coefficient b is 0 too, but 0 * garbage may be NaN)
-  }
-  for (int l = L; l < B; ++l) {
-    const double c1r = c1[2 * l], c1i = c1[2 * l + 1];
-    const double c2r = c2[2 * l], c2i = c2[2 * l + 1];
-    for (int j = 0; j < J; ++j) {
-      const double d = dprev[j];
-      a1r[j] += c1r * d;
-      a1i[j] += c1i * d;
-      a2r[j] += c2r * d;
-      a2i[j] += c2i * d;
-    }
-    if (l + 1 < B) {
-      const WignerStep st = steps.step(l, mp, m);
-      for (int j = 0; j < J; ++j)
-        dnext[j] = (st.a * cb[j] + st.ac) * dprev[j] - st.b * dpp[j];
-      double* tmp = dpp; // dpp <- d^l, dprev <- d^{l+1}
-      dpp = dprev;
-      dprev = dnext;
-      dnext = tmp;
-    }
-  }
-}
-
-/** The l-recurrence of the exact evaluation for one order pair, for K rotations at once
- *  (their cos beta in \a cb), shared by P coefficient sequences (c holds P rows of B
- *  complex values): acc_p,k = sum_l c_p,l d^l(beta_k), split into real and imaginary
- *  parts (P rows of K). Each sequence sees the same operations in the same order as
- *  if it were alone. Dispatched like wignerAccumulate. */
-[[gnu::target_clones("avx2", "default")]] void
-evaluateAccumulate(const WignerStepTable& steps, int L, int B, int K, int P, int mp,
-                   int m, const double* __restrict cb, const double* __restrict c,
-                   double* __restrict d0, double* __restrict d1, double* __restrict d2,
-                   double* __restrict acc_re, double* __restrict acc_im)
+accumulateDegrees(const WignerStepTable& steps, int L, int B, int K, int P, int mp,
+                  int m, const double* __restrict cb, const double* __restrict c,
+                  double* __restrict d0, double* __restrict d1, double* __restrict d2,
+                  double* __restrict acc_re, double* __restrict acc_im)
 {
   double* dprev = d0;
   double* dpp = d1;
@@ -190,22 +147,20 @@ void wignerOrder(const SphericalSpectrum& target, const SphericalSpectrum& sourc
     const int L = std::max(std::abs(mp), m);
     for (int l = L; l < B; ++l) {
       const Complex h = source(l, m);
-      w.c1[l] = std::conj(coefficient(target, l, mp)) * h;
+      w.c[l] = std::conj(coefficient(target, l, mp)) * h;
       const Complex c2 = std::conj(coefficient(target, l, -mp)) * h;
-      w.c2[l] = ((l - m) % 2) ? -c2 : c2;
+      w.c[B + l] = ((l - m) % 2) ? -c2 : c2;
     }
     const WignerStart start = wignerStart(mp, m, tables.log_factorials);
     for (int j = 0; j < J; ++j)
       w.d0[j] = start.value(tables.log_cos_half[j], tables.log_sin_half[j]);
-    wignerAccumulate(tables.steps, L, B, J, mp, m, tables.cos_beta.data(),
-                     reinterpret_cast<const double*>(w.c1.data()),
-                     reinterpret_cast<const double*>(w.c2.data()), w.d0.data(),
-                     w.d1.data(), w.d2.data(), w.acc1_re.data(), w.acc1_im.data(),
-                     w.acc2_re.data(), w.acc2_im.data());
-    const double* a1r = w.acc1_re.data();
-    const double* a1i = w.acc1_im.data();
-    const double* a2r = w.acc2_re.data();
-    const double* a2i = w.acc2_im.data();
+    accumulateDegrees(tables.steps, L, B, J, 2, mp, m, tables.cos_beta.data(),
+                      reinterpret_cast<const double*>(w.c.data()), w.d0.data(),
+                      w.d1.data(), w.d2.data(), w.acc_re.data(), w.acc_im.data());
+    const double* a1r = w.acc_re.data();
+    const double* a1i = w.acc_im.data();
+    const double* a2r = w.acc_re.data() + J;
+    const double* a2i = w.acc_im.data() + J;
     // c2r computes sum T e^{+i...}: feed conj(S) to get the e^{-i...} sum of the spec.
     const int p1 = wrap(mp, N), p2 = wrap(-mp, N);
     for (int j = 0; j < J; ++j) {
@@ -214,6 +169,26 @@ void wignerOrder(const SphericalSpectrum& target, const SphericalSpectrum& sourc
         g.T[(N - 1 - j) * g.slice + p2 * g.nh + m] = Complex(a2r[j], -a2i[j]);
     }
   }
+}
+
+/** Every beta slice's coefficients: zeroing and the Wigner stage write disjoint
+ *  entries (orders below B are the Wigner stage's), so they share one loop. Four
+ *  orders per chunk: neighbouring orders write neighbouring columns of every slice,
+ *  which share cache lines. */
+void wignerStage(const SphericalSpectrum& target, const SphericalSpectrum& source,
+                 const WignerTables& tables, const SliceLayout& layout, int num_threads)
+{
+  detail::parallelFor(std::max(layout.rows, layout.B), 4, num_threads,
+                      [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+                        for (int k = static_cast<int>(first); k < last; ++k) {
+                          if (k < layout.rows)
+                            zeroUnwrittenOrders(layout, k, k + 1);
+                          if (k < layout.B) {
+                            WignerScratch w(layout.J, layout.B);
+                            wignerOrder(target, source, k, tables, layout, w);
+                          }
+                        }
+                      });
 }
 
 /** One in-place N x N c2r FFT per beta slice in [first, last). */
@@ -293,13 +268,8 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
   // beta_j for j < Bo; the mirrored half (rows N-1-j) comes from d(pi - beta). With a
   // tilt limit the recurrence runs over the rows j < min(rows, Bo) and the mirrored
   // rows it yields are kept only when they are below \a rows too.
-  SliceLayout layout;
-  layout.B = B;
-  layout.N = N;
-  layout.J = std::min(Bo, rows);
-  layout.rows = rows;
-  layout.nh = Bo + 1;
-  layout.slice = static_cast<std::size_t>(N) * layout.nh;
+  const std::size_t nh = Bo + 1;
+  SliceLayout layout{B, N, std::min(Bo, rows), rows, nh, N * nh};
 
   So3CorrelationGrid grid;
   grid.output_bandwidth_ = Bo;
@@ -314,21 +284,7 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
 
   const WignerTables tables{*steps_, log_factorials_, cos_beta_, log_cos_half_,
                             log_sin_half_};
-  // Zeroing and the Wigner stage write disjoint entries (orders below B are the
-  // Wigner stage's), so they share one loop; the slices' FFTs need both. Four orders
-  // per chunk: neighbouring orders write neighbouring columns of every slice, which
-  // share cache lines (benchmarks.md 11.19).
-  detail::parallelFor(std::max(rows, B), 4, num_threads,
-                      [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
-                        for (int k = static_cast<int>(first); k < last; ++k) {
-                          if (k < rows)
-                            zeroUnwrittenOrders(layout, k, k + 1);
-                          if (k < B) {
-                            WignerScratch w(layout.J, B);
-                            wignerOrder(target, source, k, tables, layout, w);
-                          }
-                        }
-                      });
+  wignerStage(target, source, tables, layout, num_threads);
   detail::parallelFor(rows, 1, num_threads,
                       [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
                         inverseSlices(layout, plan_->slice_c2r.get(),
@@ -337,13 +293,42 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
   return grid;
 }
 
-// ---------------------------------------------------------------------------------------
-std::vector<std::vector<double>>
-evaluateCorrelations(const std::vector<SpectrumPair>& pairs,
-                     const std::vector<Eigen::Matrix3d>& rotations, int num_threads)
+namespace {
+
+/** The rotations of an exact evaluation as the recurrence reads them. */
+struct EvaluationPoints {
+  std::vector<EulerZYZ> euler;
+  std::vector<double> cos_beta, log_cos_half, log_sin_half;
+  /** e^{-i m' alpha_k} at [(m' + B - 1) K + k], computed once rather than in the loop
+   *  over (m, m'), which would take B times as many sincos. */
+  std::vector<Complex> turn;
+};
+
+EvaluationPoints evaluationPoints(const std::vector<Eigen::Matrix3d>& rotations, int B)
 {
-  if (pairs.empty())
-    return {};
+  const int K = static_cast<int>(rotations.size());
+  EvaluationPoints points;
+  points.euler.resize(K);
+  points.cos_beta.resize(K);
+  points.log_cos_half.resize(K);
+  points.log_sin_half.resize(K);
+  for (int k = 0; k < K; ++k) {
+    points.euler[k] = eulerFromRotation(rotations[k]);
+    points.cos_beta[k] = std::cos(points.euler[k].beta);
+    points.log_cos_half[k] = std::log(std::cos(0.5 * points.euler[k].beta));
+    points.log_sin_half[k] = std::log(std::sin(0.5 * points.euler[k].beta));
+  }
+  points.turn.resize(static_cast<std::size_t>(2 * B - 1) * K);
+  for (int mp = -(B - 1); mp < B; ++mp)
+    for (int k = 0; k < K; ++k)
+      points.turn[static_cast<std::size_t>(mp + B - 1) * K + k] =
+          std::polar(1.0, -mp * points.euler[k].alpha);
+  return points;
+}
+
+/** The bandwidth B of \a pairs after checking that every spectrum is B x B. */
+int checkedPairBandwidth(const std::vector<SpectrumPair>& pairs)
+{
   for (const SpectrumPair& pair : pairs)
     if (!pair.target || !pair.source)
       throw InvalidArgument("evaluateCorrelations: a spectrum pair is incomplete");
@@ -353,58 +338,66 @@ evaluateCorrelations(const std::vector<SpectrumPair>& pairs,
     checkSpectrum(*pair.target, B, "target");
     checkSpectrum(*pair.source, B, "source");
   }
+  return B;
+}
+
+/** The contribution of order m to every pair's C at every rotation, pair-major
+ *  (P x K) into \a partial: the l-recurrence per m', shared by the pairs. */
+void evaluateOrder(int m, const std::vector<SpectrumPair>& pairs,
+                   const EvaluationPoints& points, const WignerStepTable& steps,
+                   const std::vector<double>& log_factorials, double* partial)
+{
+  const int B = static_cast<int>(pairs.front().source->rows());
+  const int P = static_cast<int>(pairs.size());
+  const int K = static_cast<int>(points.euler.size());
+  const std::size_t PK = static_cast<std::size_t>(P) * K;
+  std::vector<double> d0(K), d1(K), d2(K), acc_re(PK), acc_im(PK);
+  std::vector<Complex> sum_mp(PK, Complex(0.0)), c(static_cast<std::size_t>(P) * B);
+  for (int mp = -(B - 1); mp < B; ++mp) {
+    const int L = std::max(std::abs(mp), m);
+    const WignerStart start = wignerStart(mp, m, log_factorials);
+    for (int k = 0; k < K; ++k)
+      d0[k] = start.value(points.log_cos_half[k], points.log_sin_half[k]);
+    for (int q = 0; q < P; ++q)
+      for (int l = L; l < B; ++l)
+        c[static_cast<std::size_t>(q) * B + l] =
+            std::conj(coefficient(*pairs[q].target, l, mp)) * (*pairs[q].source)(l, m);
+    accumulateDegrees(steps, L, B, K, P, mp, m, points.cos_beta.data(),
+                      reinterpret_cast<const double*>(c.data()), d0.data(), d1.data(),
+                      d2.data(), acc_re.data(), acc_im.data());
+    const Complex* turn = &points.turn[static_cast<std::size_t>(mp + B - 1) * K];
+    for (std::size_t i = 0; i < PK; ++i)
+      sum_mp[i] += turn[i % K] * Complex(acc_re[i], acc_im[i]);
+  }
+  const double eps = (m == 0) ? 1.0 : 2.0;
+  for (std::size_t i = 0; i < PK; ++i)
+    partial[i] =
+        eps * (std::polar(1.0, -m * points.euler[i % K].gamma) * sum_mp[i]).real();
+}
+
+} // namespace
+
+std::vector<std::vector<double>>
+evaluateCorrelations(const std::vector<SpectrumPair>& pairs,
+                     const std::vector<Eigen::Matrix3d>& rotations, int num_threads)
+{
+  if (pairs.empty())
+    return {};
+  const int B = checkedPairBandwidth(pairs);
   const int P = static_cast<int>(pairs.size());
   const int K = static_cast<int>(rotations.size());
-  std::vector<EulerZYZ> euler(K);
-  std::vector<double> cb(K), lc(K), ls(K);
-  for (int k = 0; k < K; ++k) {
-    euler[k] = eulerFromRotation(rotations[k]);
-    cb[k] = std::cos(euler[k].beta);
-    lc[k] = std::log(std::cos(0.5 * euler[k].beta));
-    ls[k] = std::log(std::sin(0.5 * euler[k].beta));
-  }
-  const std::vector<double> lf = logFactorials(2 * B + 1);
+  const EvaluationPoints points = evaluationPoints(rotations, B);
+  const std::vector<double> log_factorials = logFactorials(2 * B + 1);
   const std::shared_ptr<const WignerStepTable> steps = wignerStepTable(B);
-  // e^{-i m' alpha_k} for every order m' and rotation k, once: inside the loop over
-  // (m, m') it would be B times as many sincos.
-  std::vector<Complex> turn_table(static_cast<std::size_t>(2 * B - 1) * K);
-  for (int mp = -(B - 1); mp < B; ++mp)
-    for (int k = 0; k < K; ++k)
-      turn_table[static_cast<std::size_t>(mp + B - 1) * K + k] =
-          std::polar(1.0, -mp * euler[k].alpha);
   // Per-order partial sums, reduced in a fixed order: identical for any thread count.
   const std::size_t PK = static_cast<std::size_t>(P) * K;
   std::vector<double> partial(static_cast<std::size_t>(B) * PK, 0.0);
-
-  detail::parallelFor(
-      B, 1, num_threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
-        std::vector<double> d0(K), d1(K), d2(K), acc_re(PK), acc_im(PK);
-        std::vector<Complex> sum_mp(PK), c(static_cast<std::size_t>(P) * B);
-        for (int m = static_cast<int>(first); m < last; ++m) {
-          std::fill(sum_mp.begin(), sum_mp.end(), Complex(0.0));
-          for (int mp = -(B - 1); mp < B; ++mp) {
-            const int L = std::max(std::abs(mp), m);
-            const WignerStart start = wignerStart(mp, m, lf);
-            for (int k = 0; k < K; ++k)
-              d0[k] = start.value(lc[k], ls[k]);
-            for (int q = 0; q < P; ++q)
-              for (int l = L; l < B; ++l)
-                c[static_cast<std::size_t>(q) * B + l] =
-                    std::conj(coefficient(*pairs[q].target, l, mp)) *
-                    (*pairs[q].source)(l, m);
-            evaluateAccumulate(*steps, L, B, K, P, mp, m, cb.data(),
-                               reinterpret_cast<const double*>(c.data()), d0.data(),
-                               d1.data(), d2.data(), acc_re.data(), acc_im.data());
-            const Complex* turn = &turn_table[static_cast<std::size_t>(mp + B - 1) * K];
-            for (std::size_t i = 0; i < PK; ++i)
-              sum_mp[i] += turn[i % K] * Complex(acc_re[i], acc_im[i]);
-          }
-          const double eps = (m == 0) ? 1.0 : 2.0;
-          for (std::size_t i = 0; i < PK; ++i)
-            partial[static_cast<std::size_t>(m) * PK + i] =
-                eps * (std::polar(1.0, -m * euler[i % K].gamma) * sum_mp[i]).real();
-        }
-      });
+  detail::parallelFor(B, 1, num_threads,
+                      [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+                        for (int m = static_cast<int>(first); m < last; ++m)
+                          evaluateOrder(m, pairs, points, *steps, log_factorials,
+                                        &partial[static_cast<std::size_t>(m) * PK]);
+                      });
   std::vector<std::vector<double>> value(P, std::vector<double>(K, 0.0));
   for (int m = 0; m < B; ++m)
     for (int q = 0; q < P; ++q)
@@ -412,16 +405,6 @@ evaluateCorrelations(const std::vector<SpectrumPair>& pairs,
         value[q][k] += partial[static_cast<std::size_t>(m) * PK +
                                static_cast<std::size_t>(q) * K + k];
   return value;
-}
-
-std::vector<double> evaluateCorrelation(const SphericalSpectrum& target,
-                                        const SphericalSpectrum& source,
-                                        const std::vector<Eigen::Matrix3d>& rotations,
-                                        int num_threads)
-{
-  return std::move(
-      evaluateCorrelations({SpectrumPair{&target, &source}}, rotations, num_threads)
-          .front());
 }
 
 } // namespace pcl::phaser

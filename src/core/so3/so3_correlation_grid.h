@@ -4,15 +4,42 @@
  */
 #pragma once
 
-#include "so3/so3_grid.h"
+#include <Eigen/Core>
 
 #include <cstddef>
 #include <limits>
 
 namespace pcl::phaser {
 
-/** \brief The correlation C(R) = int f(w) h(R^-1 w) dw sampled on the (2Bo)^3 Euler
- * grid (f = target, h = source). Owns its buffer; cheap to move. */
+/** \brief ZYZ Euler angles: R = Rz(alpha) Ry(beta) Rz(gamma), beta in [0, pi]. */
+struct EulerZYZ {
+  double alpha = 0.0;
+  double beta = 0.0;
+  double gamma = 0.0;
+};
+
+/** \brief Rz(alpha) Ry(beta) Rz(gamma), active right-handed rotations. */
+Eigen::Matrix3d rotationFromEuler(const EulerZYZ& e);
+
+/** \brief Inverse of rotationFromEuler with beta in [0, pi]; gamma = 0 at the poles. */
+EulerZYZ eulerFromRotation(const Eigen::Matrix3d& R);
+
+/** \brief A sample of the (2Bo)^3 Euler grid, flat index (j * N + a) * N + c, N = 2 Bo.
+ */
+struct So3GridIndex {
+  int beta = 0;
+  int alpha = 0;
+  int gamma = 0;
+};
+
+/** \brief alpha = pi a / Bo, beta = pi (2j+1) / (4 Bo), gamma = pi c / Bo. */
+EulerZYZ gridEuler(const So3GridIndex& index, int output_bandwidth);
+
+/** \brief Geodesic angle between two rotations, in radians. */
+double rotationDistance(const Eigen::Matrix3d& A, const Eigen::Matrix3d& B);
+
+/** \brief C(R) = int f(w) h(R^-1 w) dw (f target, h source) on the (2Bo)^3 Euler grid.
+ */
 class So3CorrelationGrid {
 public:
   So3CorrelationGrid() = default;
@@ -36,19 +63,16 @@ public:
     return (*this)(i.beta, i.alpha, i.gamma);
   }
 
-  /** \brief Grid sample with the largest C; ties go to the lowest flat index, for any
-   *  \a num_threads. On a grid of limited tilt (So3Correlator::correlate with
-   *  beta_rows) only the rows whose beta neighbors were computed take part, so the
-   *  3 x 3 x 3 block around the result (rotationNeighborhood) is always sampled. */
+  /** \brief Grid sample with the largest C (ties: lowest flat index, for any
+   *  \a num_threads). On a grid of limited tilt only rows whose beta neighbors were
+   *  computed take part, so the 3 x 3 x 3 block around the result is sampled. */
   So3GridIndex argmax(int num_threads = 1) const;
 
-  /** \brief Grid sample with the largest C among those within \a radius (radians,
-   *  geodesic angle) of the identity, ties to the lowest flat index; the sample nearest
-   *  the identity when none lies within \a radius. */
+  /** \brief Grid sample with the largest C within \a radius radians of the identity
+   *  (ties: lowest flat index), or the one nearest the identity when none is. */
   So3GridIndex argmaxNearIdentity(double radius) const;
 
-  /** \brief Beta rows computed: rows j < betaRows() hold C, the others -infinity
-   *  (size() unless the correlation was limited in tilt). */
+  /** \brief Rows computed (size() unless limited in tilt). */
   int betaRows() const { return beta_rows_; }
 
 private:
@@ -59,9 +83,8 @@ private:
   double* data_ = nullptr;     // fftw_malloc'ed, beta_rows_ * N * row_stride_ doubles
 };
 
-/** \brief Beta rows of the (2Bo)^3 grid that hold every rotation of tilt (Euler beta,
- *  which is at most the rotation angle) up to \a max_tilt radians, plus one row so the
- *  neighborhood of each such sample is computed too; at most 2 Bo. */
+/** \brief Beta rows of the (2Bo)^3 grid holding every rotation of tilt (Euler beta) up
+ *  to \a max_tilt radians, plus one for their neighborhoods; at most 2 Bo. */
 int betaRowsForTilt(int output_bandwidth, double max_tilt);
 
 } // namespace pcl::phaser

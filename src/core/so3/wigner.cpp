@@ -59,21 +59,6 @@ WignerStart wignerStart(int mp, int m, const std::vector<double>& lf)
   return s;
 }
 
-WignerStep wignerStep(int l, int mp, int m)
-{
-  if (l == 0) // only m = m' = 0: d^1_00 = cos(beta)
-    return {1.0, 0.0, 0.0};
-  const double l1 = l + 1.0;
-  const double mm = static_cast<double>(m) * m;
-  const double mpmp = static_cast<double>(mp) * mp;
-  const double r = std::sqrt((l1 * l1 - mm) * (l1 * l1 - mpmp));
-  const double a = l1 * (2.0 * l + 1.0) / r;
-  const double cc = -static_cast<double>(m) * mp / (static_cast<double>(l) * l1);
-  const double ll = static_cast<double>(l) * l;
-  const double b = l1 * std::sqrt(std::max(0.0, (ll - mm) * (ll - mpmp))) / (l * r);
-  return {a, a * cc, b};
-}
-
 WignerStepTable::WignerStepTable(int bandwidth)
 {
   checkBandwidth(bandwidth);
@@ -103,29 +88,6 @@ std::shared_ptr<const WignerStepTable> wignerStepTable(int bandwidth)
   checkBandwidth(bandwidth);
   return cache.get(bandwidth,
                    [&] { return std::make_shared<const WignerStepTable>(bandwidth); });
-}
-
-std::vector<double> wignerSmallD(int mp, int m, int bandwidth, double beta)
-{
-  checkBandwidth(bandwidth);
-  std::vector<double> d(bandwidth, 0.0);
-  const int L = std::max(std::abs(mp), std::abs(m));
-  if (L >= bandwidth)
-    return d;
-  const std::vector<double> lf = logFactorials(2 * L + 1);
-  const WignerStart start = wignerStart(mp, m, lf);
-  const double cb = std::cos(beta);
-  double prev =
-      start.value(std::log(std::cos(0.5 * beta)), std::log(std::sin(0.5 * beta)));
-  double prev2 = 0.0;
-  for (int l = L; l < bandwidth; ++l) {
-    d[l] = prev;
-    const WignerStep st = wignerStep(l, mp, m);
-    const double next = (st.a * cb + st.ac) * prev - st.b * prev2;
-    prev2 = prev;
-    prev = next;
-  }
-  return d;
 }
 
 } // namespace pcl::phaser

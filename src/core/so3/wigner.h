@@ -14,8 +14,7 @@ namespace pcl::phaser {
 std::vector<double> logFactorials(int n);
 
 /** \brief First value d^L_{m'm}(beta) of the l-recurrence, L = max(|m'|, |m|), in log
- *  space: d^L = sign * exp(log_scale + exp_cos * log cos(beta/2) + exp_sin * log
- * sin(beta/2)). (doc/so3-correlation-spec.md section 3.3, cases i-iv). */
+ *  space: sign exp(log_scale + exp_cos log cos(beta/2) + exp_sin log sin(beta/2)). */
 struct WignerStart {
   int degree;       ///< L
   double sign;      ///< +1 or -1
@@ -27,9 +26,7 @@ struct WignerStart {
   double value(double log_cos_half, double log_sin_half) const;
 };
 
-/** \brief The start of the l-recurrence for the orders (m', m).
- *  \param[in] mp the order m'
- *  \param[in] m the order m
+/** \brief The start of the l-recurrence for the orders (m' = \a mp, \a m).
  *  \param[in] log_factorials table of at least 2 max(|m'|,|m|) + 1 entries */
 WignerStart wignerStart(int mp, int m, const std::vector<double>& log_factorials);
 
@@ -39,14 +36,8 @@ struct WignerStep {
   double a, ac, b;
 };
 
-/** \brief Step from degree l to l+1 for orders (m', m); valid for l >= max(|m'|,|m|).
- */
-WignerStep wignerStep(int l, int mp, int m);
-
-/** \brief The same steps from tables of sqrt(l^2 - m^2) and their inverses, so a step
- *  costs a few products instead of two square roots and three divisions (the
- *  recurrences run one step per degree and order pair: ~260k at B = 64). Equal to
- *  wignerStep up to rounding. */
+/** \brief The recurrence's steps from tables of sqrt(l^2 - m^2) and their inverses: a
+ *  few products per step instead of two square roots and three divisions. */
 class WignerStepTable {
 public:
   /** \param[in] bandwidth B: steps for l < B, |m|, |m'| < B */
@@ -72,13 +63,8 @@ private:
   std::vector<double> growth_, ratio_, inv_ll1_; ///< (l+1)(2l+1), (l+1)/l, 1/(l(l+1))
 };
 
-/** \brief The step table of bandwidth B, built once per process and shared read-only.
+/** \brief The step table of bandwidth B, built once per process and shared.
  *  \throws InvalidArgument for a bandwidth outside [1, 256] */
 std::shared_ptr<const WignerStepTable> wignerStepTable(int bandwidth);
-
-/** \brief d^l_{m'm}(beta) (Wigner/Sakurai convention, |d| <= 1) for l = 0..B-1; entries
- *  with l < max(|m'|,|m|) are zero. beta in [0, pi]. Reference helper for evaluation
- * and tests; the correlation runs its own vectorized loop. */
-std::vector<double> wignerSmallD(int mp, int m, int bandwidth, double beta);
 
 } // namespace pcl::phaser

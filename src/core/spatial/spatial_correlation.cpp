@@ -47,36 +47,28 @@ using detail::resolveThreads;
 constexpr int kMinGridSize = 8;
 constexpr int kMaxGridSize = 1024;
 
-// ---------------------------------------------------------------------------------------
 /** One point's trilinear footprint: lower corner voxel and the fractions towards the
  *  upper corner. */
 struct Splat {
   Eigen::Vector3i base;
   Eigen::Vector3d frac;
-  double value;
 };
 
 /** Footprint of every point i in [first, last) into \a all, \a inside[i] = 1 when its
- *  continuous voxel coordinate u (voxel centers at integers) lies in [-1, n) on every
- *  axis and the point and value are finite (else 0). A pure function of each point. */
+ *  continuous voxel coordinate u (voxel centers at integers) is finite and lies in
+ *  [-1, n) on every axis (else 0); tested in double, before any integer conversion. */
 void pointFootprints(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
-                     const Eigen::VectorXd* values, Splat* all, char* inside,
-                     Eigen::Index first, Eigen::Index last)
+                     Splat* all, char* inside, Eigen::Index first, Eigen::Index last)
 {
   const Eigen::Array3d upper = grid.dims.cast<double>().array();
-  // The range test is done in double so far or negative points are dropped before any
-  // integer conversion (the original cast -1 to unsigned and wrote such points into
-  // valid voxels).
   for (Eigen::Index i = first; i < last; ++i) {
-    const double value = values ? (*values)[i] : 1.0;
     const Eigen::Array3d u =
         (points.col(i) - grid.origin).array() / grid.voxel_size - 0.5;
     inside[i] = 0;
-    if (!std::isfinite(value) || !u.allFinite() || (u < -1.0).any() ||
-        (u >= upper).any())
+    if (!u.allFinite() || (u < -1.0).any() || (u >= upper).any())
       continue;
     const Eigen::Array3d lower = u.floor();
-    all[i] = {lower.cast<int>().matrix(), (u - lower).matrix(), value};
+    all[i] = {lower.cast<int>().matrix(), (u - lower).matrix()};
     inside[i] = 1;
   }
 }
@@ -133,19 +125,15 @@ void sortBySlab(const Splat* all, const char* inside, std::size_t count, Splat* 
   });
 }
 
-/** Slab x of the voxelization: zeroes it, sums the trilinear weights W (into \a out)
- *  and, with values, weight * value S (into \a weighted) of the splats in [first,
- *  last), then turns W into the mean value times soft occupancy (see the header for
- *  why) while the slab is in cache. Writes slab x only, in a fixed order. */
+/** Slab x of the voxelization: zeroes it, sums the trilinear weights W of the splats
+ *  in [first, last) and turns them into the soft occupancy while the slab is in cache.
+ *  Writes slab x only, in a fixed order. */
 void accumulateSlab(const SpatialGrid& grid, int x, const Splat* first,
-                    const Splat* last, bool with_values, double saturation,
-                    SpatialRealArray& out, SpatialRealArray& weighted)
+                    const Splat* last, double saturation, SpatialRealArray& out)
 {
   const int ny = grid.dims.y(), nz = grid.dims.z();
   const std::size_t slab = static_cast<std::size_t>(ny) * nz;
   std::fill_n(out.begin() + static_cast<std::ptrdiff_t>(x * slab), slab, 0.0);
-  if (with_values)
-    std::fill_n(weighted.begin() + static_cast<std::ptrdiff_t>(x * slab), slab, 0.0);
   for (const Splat* s = first; s != last; ++s) {
     const double wx = s->base.x() == x ? 1.0 - s->frac.x() : s->frac.x();
     for (int dy = 0; dy < 2; ++dy) {
@@ -155,74 +143,19 @@ void accumulateSlab(const SpatialGrid& grid, int x, const Splat* first,
       const double wxy = wx * (dy ? s->frac.y() : 1.0 - s->frac.y());
       for (int dz = 0; dz < 2; ++dz) {
         const int z = s->base.z() + dz;
-        if (z < 0 || z >= nz)
-          continue;
-        const double w = wxy * (dz ? s->frac.z() : 1.0 - s->frac.z());
-        const std::size_t flat = grid.flatIndex(x, y, z);
-        out[flat] += w;
-        if (with_values)
-          weighted[flat] += w * s->value;
+        if (z >= 0 && z < nz)
+          out[grid.flatIndex(x, y, z)] += wxy * (dz ? s->frac.z() : 1.0 - s->frac.z());
       }
     }
   }
   const std::size_t end = (static_cast<std::size_t>(x) + 1) * slab;
   for (std::size_t i = static_cast<std::size_t>(x) * slab; i < end; ++i) {
     const double w = out[i];
-    if (w <= 0.0) {
+    if (w <= 0.0)
       out[i] = 0.0;
-      continue;
-    }
-    const double occupancy =
-        saturation > 0.0 ? -saturation * std::expm1(-w / saturation) : w;
-    out[i] = with_values ? (weighted[i] / w) * occupancy : occupancy;
+    else
+      out[i] = saturation > 0.0 ? -saturation * std::expm1(-w / saturation) : w;
   }
-}
-
-SpatialVolume voxelizeImpl(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
-                           const Eigen::VectorXd* values,
-                           const SpatialVoxelParameters& parameters)
-{
-  checkGrid(grid, "voxelize");
-  const int threads = resolveThreads(parameters.num_threads);
-  const double saturation = parameters.saturation;
-  if (!std::isfinite(saturation) || saturation < 0.0)
-    throw InvalidArgument("voxelize: saturation must be finite and >= 0");
-  if (values && values->size() != points.cols())
-    throw InvalidArgument("voxelize: " + std::to_string(values->size()) +
-                          " values for " + std::to_string(points.cols()) + " points");
-
-  const int nx = grid.dims.x();
-  const std::size_t count = static_cast<std::size_t>(points.cols());
-  // Left uninitialized: every footprint read is written first (zeroing them was a
-  // single-threaded pass over megabytes).
-  const std::unique_ptr<Splat[]> all(new Splat[count]), sorted(new Splat[count]);
-  const std::unique_ptr<char[]> inside(new char[count]);
-  std::vector<std::size_t> slab_start(static_cast<std::size_t>(nx) + 2);
-
-  SpatialVolume volume;
-  volume.grid = grid;
-  volume.values.resize(grid.size()); // first the summed weights W
-  SpatialRealArray weighted;         // summed weight * value S, only with values
-  if (values)
-    weighted.resize(grid.size());
-  // Footprints (per point), the counting sort (per chunk), then the slabs. Slab x is
-  // zeroed and written by chunk x only and sums its points in a fixed order, so the
-  // result does not depend on the thread count (no racy += into shared voxels). Splats
-  // with lower x index x-1 and x: buckets x and x+1 of the counting sort.
-  detail::parallelFor(points.cols(), 1024, threads,
-                      [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
-                        pointFootprints(grid, points, values, all.get(), inside.get(),
-                                        first, last);
-                      });
-  sortBySlab(all.get(), inside.get(), count, sorted.get(), slab_start, threads);
-  detail::parallelFor(
-      nx, 4, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
-        for (std::ptrdiff_t x = first; x < last; ++x)
-          accumulateSlab(grid, static_cast<int>(x), sorted.get() + slab_start[x],
-                         sorted.get() + slab_start[x + 2], values != nullptr,
-                         saturation, volume.values, weighted);
-      });
-  return volume;
 }
 
 } // namespace
@@ -303,14 +236,36 @@ SpatialGrid makeSpatialGrid(const Eigen::Matrix3Xd& points,
 SpatialVolume voxelize(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
                        const SpatialVoxelParameters& parameters)
 {
-  return voxelizeImpl(grid, points, nullptr, parameters);
-}
-
-SpatialVolume voxelize(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
-                       const Eigen::VectorXd& values,
-                       const SpatialVoxelParameters& parameters)
-{
-  return voxelizeImpl(grid, points, &values, parameters);
+  checkGrid(grid, "voxelize");
+  const int threads = resolveThreads(parameters.num_threads);
+  const double saturation = parameters.saturation;
+  if (!std::isfinite(saturation) || saturation < 0.0)
+    throw InvalidArgument("voxelize: saturation must be finite and >= 0");
+  const int nx = grid.dims.x();
+  const std::size_t count = static_cast<std::size_t>(points.cols());
+  // Left uninitialized: every footprint read is written first.
+  const std::unique_ptr<Splat[]> all(new Splat[count]), sorted(new Splat[count]);
+  const std::unique_ptr<char[]> inside(new char[count]);
+  std::vector<std::size_t> slab_start(static_cast<std::size_t>(nx) + 2);
+  SpatialVolume volume;
+  volume.grid = grid;
+  volume.values.resize(grid.size());
+  // Footprints, the counting sort, then the slabs: slab x sums the splats of lower x
+  // index x-1 and x (buckets x and x+1) alone and in a fixed order, so the result does
+  // not depend on the thread count.
+  detail::parallelFor(points.cols(), 1024, threads,
+                      [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+                        pointFootprints(grid, points, all.get(), inside.get(), first,
+                                        last);
+                      });
+  sortBySlab(all.get(), inside.get(), count, sorted.get(), slab_start, threads);
+  detail::parallelFor(
+      nx, 4, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+        for (std::ptrdiff_t x = first; x < last; ++x)
+          accumulateSlab(grid, static_cast<int>(x), sorted.get() + slab_start[x],
+                         sorted.get() + slab_start[x + 2], saturation, volume.values);
+      });
+  return volume;
 }
 
 SpatialSpectrum computeSpectrum(const SpatialVolume& volume, int num_threads)
@@ -350,14 +305,44 @@ quarterWhitenedProduct(const double* f, const double* g, double* c, std::size_t 
   }
 }
 
-/** C = F conj(G) / N written into \a out (which may alias \a source), divided by
- *  |F conj(G)|^whitening, then the c2r (unnormalized; 1/N makes the output the plain
- *  sum when whitening is 0). */
-SpatialVolume correlateInto(const SpatialSpectrum& target,
-                            const SpatialSpectrum& source, SpatialComplexArray& out,
-                            int num_threads, double whitening = 0.0)
+/** C[i] = F[i] conj(G[i]) * scale / |F[i] conj(G[i])|^whitening (0 where the product
+ *  is 0) for i in [first, first + count); \a C may be \a G. The whitening case is
+ *  chosen once per run, not per element; |c|^whitening comes from the squared
+ *  magnitude (std::abs calls the slow hypot). */
+void crossPowerRun(const std::complex<double>* F, const std::complex<double>* G,
+                   std::complex<double>* C, std::size_t first, std::size_t count,
+                   double scale, double whitening)
 {
-  const int threads = resolveThreads(num_threads);
+  const auto cross = [&](std::size_t i) {
+    const std::complex<double> f = F[i], g = G[i];
+    return std::complex<double>{f.real() * g.real() + f.imag() * g.imag(),
+                                f.imag() * g.real() - f.real() * g.imag()};
+  };
+  const auto each = [&](const auto& magnitude) {
+    for (std::size_t i = first; i < first + count; ++i) {
+      const std::complex<double> c = cross(i);
+      const double n = c.real() * c.real() + c.imag() * c.imag();
+      C[i] = c * (n > 0.0 ? scale / magnitude(n) : 0.0);
+    }
+  };
+  if (whitening == 0.0)
+    for (std::size_t i = first; i < first + count; ++i)
+      C[i] = cross(i) * scale;
+  else if (whitening == 0.5)
+    quarterWhitenedProduct(reinterpret_cast<const double*>(F + first),
+                           reinterpret_cast<const double*>(G + first),
+                           reinterpret_cast<double*>(C + first), count, scale);
+  else if (whitening == 1.0)
+    each([](double n) { return std::sqrt(n); });
+  else
+    each([whitening](double n) { return std::pow(n, 0.5 * whitening); });
+}
+
+/** The number of stored coefficients of two spectra that can be correlated.
+ *  \throws InvalidArgument when their grids or sizes do not match. */
+std::size_t checkedSpectrumSize(const SpatialSpectrum& target,
+                                const SpatialSpectrum& source)
+{
   checkGrid(target.grid, "correlateSpectra (target)");
   checkGrid(source.grid, "correlateSpectra (source)");
   if (target.grid.dims != source.grid.dims ||
@@ -369,49 +354,31 @@ SpatialVolume correlateInto(const SpatialSpectrum& target,
                         target.grid.dims.y() * target.halfZ();
   if (target.coefficients.size() != m || source.coefficients.size() != m)
     throw InvalidArgument("correlateSpectra: spectrum size does not match its grid");
+  return m;
+}
 
+/** C = F conj(G) / N written into \a out (which may alias \a source), divided by
+ *  |F conj(G)|^whitening, then the c2r (unnormalized; 1/N makes the output the plain
+ *  sum when whitening is 0). The product of each run is formed inside the inverse
+ *  transform's loop over rows, just before the run is transformed. */
+SpatialVolume correlateInto(const SpatialSpectrum& target,
+                            const SpatialSpectrum& source, SpatialComplexArray& out,
+                            int num_threads, double whitening = 0.0)
+{
+  const int threads = resolveThreads(num_threads);
+  out.resize(checkedSpectrumSize(target, source));
   const double scale = 1.0 / static_cast<double>(target.grid.size());
-  out.resize(m);
-  // The product of each run is formed inside the inverse transform's loop over rows,
-  // just before the run is transformed (element-wise, so any split gives the same
-  // result).
   const std::complex<double>* F = target.coefficients.data();
   const std::complex<double>* G = source.coefficients.data();
   std::complex<double>* C = out.data();
-  // The whitening case is chosen once, not per element: |c|^whitening from the
-  // squared magnitude (std::abs calls the slow hypot).
-  const auto product = [=](std::size_t first, std::size_t count) {
-    const auto cross = [&](std::size_t i) {
-      const std::complex<double> f = F[i], g = G[i];
-      return std::complex<double>{f.real() * g.real() + f.imag() * g.imag(),
-                                  f.imag() * g.real() - f.real() * g.imag()};
-    };
-    const auto each = [&](const auto& magnitude) {
-      for (std::size_t i = first; i < first + count; ++i) {
-        const std::complex<double> c = cross(i);
-        const double n = c.real() * c.real() + c.imag() * c.imag();
-        C[i] = c * (n > 0.0 ? scale / magnitude(n) : 0.0);
-      }
-    };
-    if (whitening == 0.0)
-      for (std::size_t i = first; i < first + count; ++i)
-        C[i] = cross(i) * scale;
-    else if (whitening == 0.5)
-      quarterWhitenedProduct(reinterpret_cast<const double*>(F + first),
-                             reinterpret_cast<const double*>(G + first),
-                             reinterpret_cast<double*>(C + first), count, scale);
-    else if (whitening == 1.0)
-      each([](double n) { return std::sqrt(n); });
-    else
-      each([whitening](double n) { return std::pow(n, 0.5 * whitening); });
-  };
-
   SpatialVolume correlation;
   correlation.grid = target.grid;
   correlation.grid.origin = target.grid.origin - source.grid.origin;
   correlation.values.resize(target.grid.size());
   detail::inverseFft3d(target.grid.dims, C, correlation.values.data(), threads,
-                       product);
+                       [=](std::size_t first, std::size_t count) {
+                         crossPowerRun(F, G, C, first, count, scale, whitening);
+                       });
   return correlation;
 }
 
@@ -439,15 +406,6 @@ SpatialVolume correlateSpectraWhitened(const SpatialSpectrum& target,
     throw InvalidArgument("correlateSpectraWhitened: exponent must be in [0, 1]");
   SpatialSpectrum consumed = std::move(source);
   return correlateInto(target, consumed, consumed.coefficients, num_threads, exponent);
-}
-
-SpatialCorrelationResult correlateSpatial(const SpatialSpectrum& target,
-                                          const SpatialSpectrum& source,
-                                          SpatialPeakRefinement refinement,
-                                          int num_threads)
-{
-  return findSpatialPeak(correlateSpectra(target, source, num_threads), refinement,
-                         num_threads);
 }
 
 } // namespace pcl::phaser

@@ -14,24 +14,16 @@
 
 namespace pcl::phaser {
 
-// ---------------------------------------------------------------------------------------
-// Aligned storage. FFTW's new-array execute functions need arrays with the same SIMD
-// alignment as the arrays the plan was made with; std::allocator does not promise that
-// (glibc returns 16-byte aligned blocks for large sizes), so volumes and spectra use an
-// allocator backed by fftw_malloc. The header stays free of <fftw3.h>.
 namespace detail {
 
-/** \brief fftw_malloc wrapper; \throws std::bad_alloc. Defined in
- *  spatial_correlation.cpp. */
+/** \brief fftw_malloc and fftw_free, without <fftw3.h> here; \throws std::bad_alloc. */
 void* spatialBufferAllocate(std::size_t bytes);
-
-/** \brief fftw_free wrapper. */
 void spatialBufferFree(void* p) noexcept;
 
-/** \brief std::allocator replacement that returns FFTW-aligned memory. Elements added
- *  without a value are default-initialized (left as they are for double), not zeroed:
- *  the volumes and spectra are written whole by the FFTs that fill them, and zeroing
- *  megabytes first cost a single-threaded pass over each. */
+/** \brief Allocator of FFTW-aligned memory: FFTW's new-array execute functions need the
+ *  SIMD alignment the plan was made with, which std::allocator does not promise.
+ *  Elements added without a value are left uninitialized, not zeroed: the FFTs that
+ *  fill volumes and spectra write them whole. */
 template <typename T>
 struct SpatialAllocator {
   using value_type = T;
@@ -75,23 +67,15 @@ using SpatialRealArray = std::vector<double, detail::SpatialAllocator<double>>;
 using SpatialComplexArray =
     std::vector<std::complex<double>, detail::SpatialAllocator<std::complex<double>>>;
 
-// ---------------------------------------------------------------------------------------
-/** \brief Axis-aligned voxel grid: isotropic voxel size, origin at the outer corner of
- *  voxel (0, 0, 0), per-axis dimensions that need not be equal.
- *
- *  Voxel (ix, iy, iz) covers [origin + i * voxel_size, origin + (i + 1) * voxel_size)
- *  on each axis; its center is origin + (i + 0.5) * voxel_size. Memory is row-major
- *  with z fastest: flat = (ix * ny + iy) * nz + iz (the layout FFTW's 3-D transforms
- *  expect). */
+/** \brief Axis-aligned voxel grid with cubic voxels: voxel i covers [origin + i *
+ *  voxel_size, origin + (i + 1) * voxel_size) on each axis. Memory is row-major with z
+ *  fastest, flat = (ix * ny + iy) * nz + iz (FFTW's layout). */
 struct SpatialGrid {
-  /** \brief Corner of voxel (0, 0, 0) in meters. */
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  /** \brief Edge length of a voxel in meters. */
-  double voxel_size = 1.0;
-  /** \brief Number of voxels along x, y, z. */
-  Eigen::Vector3i dims = Eigen::Vector3i::Zero();
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero(); ///< corner of voxel 0, meters
+  double voxel_size = 1.0;                          ///< voxel edge, meters
+  Eigen::Vector3i dims = Eigen::Vector3i::Zero();   ///< voxels along x, y, z
 
-  /** \brief Total number of voxels nx * ny * nz. */
+  /** \brief Number of voxels nx * ny * nz. */
   std::size_t size() const
   {
     return static_cast<std::size_t>(dims.x()) * static_cast<std::size_t>(dims.y()) *
@@ -116,146 +100,72 @@ struct SpatialGrid {
             static_cast<int>(flat % nz)};
   }
 
-  /** \brief Edge lengths of the whole grid in meters. */
+  /** \brief Edge lengths of the grid in meters. */
   Eigen::Vector3d extent() const { return dims.cast<double>() * voxel_size; }
-
-  /** \brief Center of voxel \a index in meters. */
-  Eigen::Vector3d voxelCenter(const Eigen::Vector3i& index) const
-  {
-    return origin + (index.cast<double>().array() + 0.5).matrix() * voxel_size;
-  }
-
-  /** \brief True if \a p lies inside the grid's box. */
-  bool contains(const Eigen::Vector3d& p) const
-  {
-    const Eigen::Array3d u = (p - origin).array() / voxel_size;
-    return (u >= 0.0).all() && (u < dims.cast<double>().array()).all();
-  }
 };
 
 /** \brief How makeSpatialGrid sizes a grid around the target points. */
 struct SpatialGridParameters {
-  /** \brief Voxels along the longest axis (legal 8..1024, rounded up to 2^a 3^b 5^c).
-   *  Used when voxel_size == 0; the voxel size then follows from the padded extent. */
+  /** \brief Voxels along the longest axis (8..1024, rounded up to 2^a 3^b 5^c), used
+   *  when voxel_size is 0. */
   int grid_size = 128;
-  /** \brief Explicit voxel size in meters; > 0 overrides grid_size, 0 means unset,
-   *  negative is illegal. The per-axis dims then follow from the padded extent and must
-   *  stay <= 1024. */
+  /** \brief Voxel size in meters; > 0 overrides grid_size (dims must stay <= 1024). */
   double voxel_size = 0.0;
-  /** \brief Margin added on each side of every axis, as a fraction of that axis's
-   *  extent. 0.5 doubles each axis, which makes the circular correlation of two equally
-   *  sized supports equal to the linear one and allows shifts up to half the extent. */
+  /** \brief Margin on each side of every axis, as a fraction of its extent: 0.5 makes
+   *  the circular correlation of equal supports the linear one. */
   double padding = 0.5;
-  /** \brief Lower bound of the per-side margin in meters (largest expected shift along
-   *  a thin axis, e.g. z of a ground-robot scan). */
+  /** \brief Lower bound of the per-side margin in meters (e.g. z of a ground robot). */
   double min_margin = 0.0;
 };
 
 /** \brief Smallest m >= n (and m >= 1) of the form 2^a 3^b 5^c. */
 int nextFftFriendlySize(int n);
 
-/** \brief Builds a grid that holds \a points (the target) with padding.
- *
- *  Per axis a with bounding-box extent e_a the covered length is e_a + 2 *
- *  max(padding*e_a, min_margin) plus one voxel per side for the trilinear splat,
- *  rounded up to an FFT-friendly voxel count (at least 8); the extra voxels from
- *  rounding are split evenly, so the box stays centered on the points. The grid depends
- *  on the target only, so its spectrum can be cached; a source voxelized into it loses
- *  the points that fall outside (they are dropped, never wrapped). Non-finite points
- *  are ignored.
- *  \throws InvalidArgument for illegal parameters, for a point set without finite
- *  points, when grid_size is used but all points coincide, or when explicit voxel_size
- *  needs more than 1024 voxels on an axis. */
+/** \brief A grid centered on the finite \a points: per axis of extent e it covers e +
+ *  2 max(padding e, min_margin) plus one splat voxel per side, rounded up to an
+ *  FFT-friendly count >= 8.
+ *  \throws InvalidArgument for illegal parameters, no finite points, coinciding points
+ *  (with grid_size), or more than 1024 voxels on an axis. */
 SpatialGrid makeSpatialGrid(const Eigen::Matrix3Xd& points,
                             const SpatialGridParameters& parameters = {});
 
-// ---------------------------------------------------------------------------------------
 /** \brief Real values on a SpatialGrid (voxel values or a correlation surface). */
 struct SpatialVolume {
-  /** \brief Geometry of the values. */
   SpatialGrid grid;
-  /** \brief grid.size() values in grid.flatIndex order. */
-  SpatialRealArray values;
+  SpatialRealArray values; ///< grid.size() values in flatIndex order
 };
 
 /** \brief How voxelize turns splatted points into voxel values. */
 struct SpatialVoxelParameters {
-  /** \brief Saturation weight W0 (> 0) of the soft occupancy W0 * (1 - exp(-W / W0)),
-   *  in points; 0 disables saturation (linear density W). */
+  /** \brief Saturation W0 of the soft occupancy W0 (1 - exp(-W / W0)), in points;
+   *  0: linear density W. */
   double saturation = 1.0;
-  /** \brief OpenMP threads (0 = OpenMP default); the result does not depend on it. */
+  /** \brief Worker threads (0 = OpenMP default); the result does not depend on it. */
   int num_threads = 1;
 };
 
-/** \brief Voxelizes \a points into \a grid with trilinear splatting, each point with
- *  value 1.
- *
- *  Every point spreads the weights of linear interpolation to the 8 voxel centers
- *  around it (so the correlation surface is smooth in the shift and its peak can be
- *  interpolated); weights that land outside the grid are dropped, never wrapped. With W
- *  the summed weight and S the summed weight * value of a voxel, the stored value is
- *  (S/W) * W0*(1 - exp(-W/W0)): the weighted mean value times a soft occupancy.
- *  Saturating keeps near-sensor voxels, which hold far more lidar returns than distant
- *  ones, from dominating the correlation (that would pull the shift towards aligning
- *  the two sensor positions), while a single point stays almost linear in its weights;
- *  the mean makes a channel (intensity, ...) independent of point density, as in the
- *  original. With value 1 this is W0*(1 - exp(-W/W0)). Linear density (saturation 0)
- *  interpolates the peak of uniformly dense surfaces better but has no density guard.
- *  Non-finite points and values are skipped. The result is bit-identical for any thread
- *  count: each voxel is summed by one thread in a fixed point order.
+/** \brief Trilinear splat of \a points into \a grid: each point spreads its
+ *  interpolation weights over the 8 voxel centers around it (weights outside the grid
+ *  are dropped), and a voxel of summed weight W stores W0 (1 - exp(-W / W0)): the
+ *  saturation keeps the dense voxels near the sensor from pulling the shift towards
+ *  stacking the two sensors. Non-finite points are skipped; bit-identical for any
+ *  thread count.
  *  \throws InvalidArgument if the grid is invalid, saturation < 0 or num_threads < 0.
  */
 SpatialVolume voxelize(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
                        const SpatialVoxelParameters& parameters = {});
 
-/** \brief As above with one value per point (e.g. a normalized channel).
- *  \throws InvalidArgument also if values.size() != points.cols(). */
-SpatialVolume voxelize(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
-                       const Eigen::VectorXd& values,
-                       const SpatialVoxelParameters& parameters = {});
-
-// ---------------------------------------------------------------------------------------
-/** \brief Half-spectrum of a real 3-D grid (FFTW r2c layout), cacheable per target.
- *
- *  coefficients holds nx * ny * (nz / 2 + 1) values, flat index (ix * ny + iy) * hz +
- *  kz with hz = nz / 2 + 1. The omitted kz < 0 half is the complex conjugate of the
- *  stored one (Hermitian symmetry). Unnormalized: coefficient(0) is the sum of all
- *  voxel values. */
+/** \brief Half-spectrum of a real 3-D grid, unnormalized, in FFTW's r2c layout:
+ *  nx * ny * hz coefficients, flat (ix * ny + iy) * hz + kz, hz = nz / 2 + 1. */
 struct SpatialSpectrum {
-  /** \brief Geometry of the transformed volume (gives the frequencies). */
-  SpatialGrid grid;
-  /** \brief The stored half-spectrum. */
+  SpatialGrid grid; ///< of the transformed volume
   SpatialComplexArray coefficients;
 
   /** \brief Number of stored kz values, nz / 2 + 1. */
   int halfZ() const { return grid.dims.z() / 2 + 1; }
 
-  /** \brief Signed integer frequency (kx, ky, kz) of stored coefficient \a flat: kx in
-   *  (-nx/2, nx/2], ky likewise, kz in [0, nz/2]. */
-  Eigen::Vector3i frequencyIndex(std::size_t flat) const
-  {
-    const std::size_t hz = static_cast<std::size_t>(halfZ());
-    const std::size_t ny = static_cast<std::size_t>(grid.dims.y());
-    int kx = static_cast<int>(flat / (ny * hz));
-    int ky = static_cast<int>((flat / hz) % ny);
-    const int kz = static_cast<int>(flat % hz);
-    if (kx > grid.dims.x() / 2)
-      kx -= grid.dims.x();
-    if (ky > grid.dims.y() / 2)
-      ky -= grid.dims.y();
-    return {kx, ky, kz};
-  }
-
-  /** \brief Frequency of coefficient \a flat in cycles per meter, k_a / (n_a * voxel).
-   *  Its norm is the radial frequency a band-pass fusion should use: unlike the integer
-   *  index it is comparable across axes of different length. */
-  Eigen::Vector3d frequency(std::size_t flat) const
-  {
-    return frequencyIndex(flat).cast<double>().cwiseQuotient(grid.extent());
-  }
-
-  /** \brief How many full-spectrum coefficients the stored one stands for: 1 on the kz
-   *  = 0 and kz = nz/2 (even nz) planes, whose partners are stored too, else 2. */
+  /** \brief Full-spectrum coefficients the stored one stands for: 1 on the planes kz =
+   *  0 and kz = nz/2 (even nz), else 2. */
   int multiplicity(std::size_t flat) const
   {
     const int kz = static_cast<int>(flat % static_cast<std::size_t>(halfZ()));
@@ -263,97 +173,67 @@ struct SpatialSpectrum {
   }
 };
 
-/** \brief r2c 3-D FFT of \a volume (plans cached per dims; thread-safe).
- *  \param[in] volume the voxel values
- *  \param[in] num_threads worker threads (0 = OpenMP default); the result is
- *  bit-identical for any count
- *  \throws InvalidArgument if values.size() != grid.size(), the grid is invalid or
- *  num_threads < 0. */
+/** \brief r2c 3-D FFT of \a volume, bit-identical for any \a num_threads (0 = OpenMP
+ *  default). \throws InvalidArgument for an invalid volume or num_threads < 0. */
 SpatialSpectrum computeSpectrum(const SpatialVolume& volume, int num_threads = 1);
 
-/** \brief Circular cross-correlation c[tau] = sum_x f[x + tau] g[x] of the \a target f
- *  and the \a source g, computed as c2r(F * conj(G)) / N, so the values equal the sum
- *  exactly.
- *
- *  The returned volume has the spectra's dims and voxel size; its origin is the metric
- *  shift of lag 0, target.grid.origin - source.grid.origin (zero when both were
- *  voxelized into one grid). Lag index i stands for i, or i - n when i > n / 2. If the
- *  target equals the source moved by +t, the peak is at lag t.
+/** \brief Circular cross-correlation c[tau] = sum_x f[x + tau] g[x] of \a target f and
+ *  \a source g, as c2r(F conj(G)) / N. Its origin is the shift of lag 0,
+ *  target.grid.origin - source.grid.origin; lag index i stands for i, or i - n past
+ *  n / 2. A target equal to the source moved by +t peaks at lag t.
  *  \throws InvalidArgument if dims or voxel sizes differ or num_threads < 0. */
 SpatialVolume correlateSpectra(const SpatialSpectrum& target,
                                const SpatialSpectrum& source, int num_threads = 1);
 
-/** \brief The same, consuming \a source: its buffer holds the product, which saves
- *  allocating (and first touching) a spectrum-sized array per correlation. */
+/** \brief The same, consuming \a source: its buffer holds the product. */
 SpatialVolume correlateSpectra(const SpatialSpectrum& target, SpatialSpectrum&& source,
                                int num_threads = 1);
 
-/** \brief The correlation with a partly whitened cross-power spectrum: each
- *  coefficient of F conj(G) divided by its magnitude to the power \a exponent (0: plain
- *  correlation, 1: phase correlation), consuming \a source. Whitening flattens the
- *  broad overlap hill of two finite occupancy grids (which favors the shift that
- *  stacks their centers, i.e. the two sensors) and keeps the sharp peak of the
- *  structures they share.
+/** \brief The correlation with each coefficient of F conj(G) divided by its magnitude
+ *  to the power \a exponent (0: plain, 1: phase correlation), consuming \a source.
+ *  Whitening flattens the broad overlap hill of two occupancy grids (which favors
+ *  stacking the two sensors) and keeps the sharp peak of the structures they share.
  *  \throws InvalidArgument as correlateSpectra, or if exponent is outside [0, 1]. */
 SpatialVolume correlateSpectraWhitened(const SpatialSpectrum& target,
                                        SpatialSpectrum&& source, double exponent,
                                        int num_threads = 1);
 
-/** \brief Sub-voxel peak interpolation, per axis through the peak and its 2 neighbors
- *  (wrapping around). Measured on random 40 x 30 x 8 m clouds (worst axis error over
- *  the test shifts): none 0.5 voxel, parabola 0.10, Gaussian 0.05-0.095; a 3x3x3
- *  least-squares quadric was also tried and was not better than the Gaussian. The
- *  residual is a bias from the peak shape that vanishes at zero offset: moving the
- *  source by the estimate, re-voxelizing and correlating again leaves ~0.002-0.01. */
+/** \brief Sub-voxel peak interpolation, per axis through the peak and its 2 wrapped
+ *  neighbors. Worst axis error measured on random 40 x 30 x 8 m clouds: none 0.5 voxel,
+ *  parabola 0.10, Gaussian 0.05-0.095. */
 enum class SpatialPeakRefinement {
   kNone,      ///< integer argmax only (error up to 0.5 voxel)
   kParabolic, ///< parabola through the raw values
   kGaussian,  ///< parabola through the logs (kParabolic if a value is <= 1e-6 peak)
 };
 
-/** \brief Result of the translation search. */
+/** \brief A peak of the translation search. */
 struct SpatialCorrelationResult {
-  /** \brief Translation in meters that moves the source onto the target (sub-voxel). */
-  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
-  /** \brief Signed lag in voxels, sub-voxel refined (shift = origin + lag * voxel). */
-  Eigen::Vector3d lag = Eigen::Vector3d::Zero();
-  /** \brief Integer argmax in the correlation volume, each in [0, n). */
-  Eigen::Vector3i index = Eigen::Vector3i::Zero();
-  /** \brief Correlation value at index. */
-  double peak_value = 0.0;
-  /** \brief Peak quality: peak-to-sidelobe ratio of the correlation's discrete
-   *  Laplacian (c minus the mean of its 6 face neighbors), (L(peak) - mean L) / stddev
-   *  L over the lags outside the 5x5x5 neighborhood of the peak. The high-pass ignores
-   *  the broad overlap pyramid of occupancy correlations, so a true match scores far
-   *  above unrelated clouds. 0 for a flat (e.g. all-zero) surface. */
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero(); ///< meters, moves source onto target
+  Eigen::Vector3d lag = Eigen::Vector3d::Zero(); ///< voxels: shift = origin + lag voxel
+  Eigen::Vector3i index = Eigen::Vector3i::Zero(); ///< integer argmax, each in [0, n)
+  double peak_value = 0.0;                         ///< correlation at index
+  /** \brief Peak-to-sidelobe ratio of the discrete Laplacian L (c minus the mean of its
+   *  6 face neighbors): (L(peak) - mean L) / stddev L over the lags outside the 5x5x5
+   *  block of the peak; 0 for a flat surface. */
   double score = 0.0;
 };
 
-/** \brief Finds and refines the maximum of a correlation volume from correlateSpectra.
- *  Ties go to the lowest flat index; neighbors wrap around. Without \a with_score the
- *  peak-to-sidelobe score (a pass over the whole volume) is left at 0. Deterministic
- * for any \a num_threads. An all-zero volume (empty source or target) gives lag index
- * 0, peak value 0 and score 0. \throws InvalidArgument if the volume is invalid or
- * num_threads < 0. */
+/** \brief The refined maximum of a correlation volume (ties: lowest flat index; an
+ *  all-zero volume gives index 0, value 0); the score only \a with_score.
+ *  Deterministic for any \a num_threads.
+ *  \throws InvalidArgument if the volume is invalid or num_threads < 0. */
 SpatialCorrelationResult
 findSpatialPeak(const SpatialVolume& correlation,
                 SpatialPeakRefinement refinement = SpatialPeakRefinement::kGaussian,
                 int num_threads = 1, bool with_score = true);
 
-/** \brief The \a count (>= 0) highest distinct peaks of a correlation volume, highest
- *  first: local maxima (at least as high as their six face neighbors, wrapped), each
- *  more than \a separation (>= 0) voxels away on some axis from every higher one taken;
- *  fewer when the volume has fewer. Refined as findSpatialPeak, without a score; single
- *  threaded. \throws InvalidArgument if the volume is invalid or an argument negative.
- */
+/** \brief Up to \a count highest local maxima (>= their 6 wrapped face neighbors),
+ *  highest first, each more than \a separation voxels away on some axis from every
+ *  higher one taken; refined as findSpatialPeak, without a score.
+ *  \throws InvalidArgument if the volume is invalid or an argument negative. */
 std::vector<SpatialCorrelationResult> findDistinctSpatialPeaks(
     const SpatialVolume& correlation, int count, int separation,
     SpatialPeakRefinement refinement = SpatialPeakRefinement::kGaussian);
-
-/** \brief correlateSpectra followed by findSpatialPeak. */
-SpatialCorrelationResult
-correlateSpatial(const SpatialSpectrum& target, const SpatialSpectrum& source,
-                 SpatialPeakRefinement refinement = SpatialPeakRefinement::kGaussian,
-                 int num_threads = 1);
 
 } // namespace pcl::phaser

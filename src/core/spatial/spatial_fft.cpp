@@ -21,21 +21,18 @@ namespace {
 
 using RunPreparation = std::function<void(std::size_t first, std::size_t count)>;
 
-/** The plans of one dims. A new-array execution needs the alignment the plan was made
- *  for; x slabs of an odd ny * nz alternate between two, so slabs get a plan per
- * alignment. Rows of complex values are always aligned alike. */
+/** The plans of one dims. A new-array execution needs the plan's alignment, and x slabs
+ *  of an odd ny * nz alternate between two: a slab plan per alignment. */
 struct Fft3dPlans {
   std::size_t slab_real = 0;    ///< ny * nz
   std::size_t slab_complex = 0; ///< ny * (nz/2+1)
   int slab_alignment[2] = {0, 0};
   FftwPlan slab_forward[2]; ///< 2-D r2c, ny x nz -> ny x (nz/2+1)
   FftwPlan slab_inverse[2]; ///< 2-D c2r, destroys its input
-  /** The rows of one y are gathered into a compact buffer (stride nz/2+1) first when
-   *  the slab stride is a multiple of 1 KiB: FFTW_ESTIMATE's strided plan then thrashes
-   *  the cache sets (96 x 128 x 30: 1.4 ms in place against 0.5 gathered). */
+  /** Rows of one y are gathered into a compact buffer first when the slab stride is a
+   *  multiple of 1 KiB, where the strided plan thrashes the cache (measured 3x). */
   bool compact_rows = false;
-  /** nz/2+1 in-place 1-D transforms along x, stride ny*(nz/2+1), or nz/2+1 (compact).
-   */
+  /** nz/2+1 in-place 1-D transforms along x (stride of a slab, or of a compact row). */
   FftwPlan row_forward;
   FftwPlan row_backward;
 
@@ -101,8 +98,7 @@ std::size_t bufferStride(std::size_t size)
   return (size + 7) / 8 * 8;
 }
 
-/** One compact row buffer of \a size per thread (parallelFor's slots) when the plans
- *  gather rows, else none; allocated before the chunks run. */
+/** One compact row buffer of \a size per thread slot when the plans gather rows. */
 FftwBuffer<fftw_complex> rowBuffers(const Fft3dPlans& plans, std::size_t size,
                                     int num_threads)
 {
@@ -112,8 +108,7 @@ FftwBuffer<fftw_complex> rowBuffers(const Fft3dPlans& plans, std::size_t size,
              : FftwBuffer<fftw_complex>();
 }
 
-/** The buffer of \a size of thread \a slot (parallelFor) in \a buffers (null when
- *  there are none). */
+/** Thread \a slot's buffer in \a buffers, or null. */
 std::complex<double>* rowBuffer(const FftwBuffer<fftw_complex>& buffers,
                                 std::size_t size, int slot)
 {
@@ -122,10 +117,9 @@ std::complex<double>* rowBuffer(const FftwBuffer<fftw_complex>& buffers,
                  : nullptr;
 }
 
-/** The 1-D transforms along x of row y (its nz/2+1 = \a row coefficients at every x)
- *  of \a data by \a plan: in place, or gathered into \a buffer (nx x row) and
- *  scattered back (Fft3dPlans::compact_rows). \a prepare, if set, is called on each run
- *  of the row first (while it is in cache when gathered). */
+/** The 1-D transforms along x of row y (\a row coefficients at every x) of \a data:
+ *  in place, or gathered into \a buffer and scattered back; \a prepare, if set, runs
+ *  on each run of the row first. */
 void transformRow(const Fft3dPlans& plans, fftw_plan plan, int nx, std::size_t row,
                   int y, std::complex<double>* data, std::complex<double>* buffer,
                   const RunPreparation& prepare = {})
@@ -162,8 +156,7 @@ void forwardFft3d(const Eigen::Vector3i& dims, const double* in,
       // Out-of-place 2-D r2c preserves its input, so casting away const is safe.
       double* slab = const_cast<double*>(in) + x * plans->slab_real;
       std::complex<double>* transformed = out + x * plans->slab_complex;
-      // A source's occupancy leaves the padding empty: half the slabs are zero, and so
-      // is their transform.
+      // The padding leaves many slabs of a source zero, and so is their transform.
       if (std::all_of(slab, slab + plans->slab_real, [](double v) { return v == 0.0; }))
         std::fill_n(transformed, plans->slab_complex, std::complex<double>(0.0));
       else
@@ -191,8 +184,6 @@ void inverseFft3d(
   parallelFor(ny, 4, num_threads,
               [&](std::ptrdiff_t first, std::ptrdiff_t last, int slot) {
                 std::complex<double>* buffer = rowBuffer(buffers, nx * row, slot);
-                // Row y's 1-D transforms read (x, y) for every x: prepare exactly those
-                // runs.
                 for (std::ptrdiff_t y = first; y < last; ++y)
                   transformRow(*plans, plans->row_backward.get(), nx, row,
                                static_cast<int>(y), in, buffer, prepare);

@@ -15,24 +15,17 @@
 namespace pcl::phaser {
 namespace detail {
 
-/** \brief Forward r2c 3-D DFT of the nx x ny x nz row-major array \a in into the
- *  nx x ny x (nz/2+1) array \a out (FFTW's layout and sign, unnormalized).
- *
- * Computed as one 2-D r2c per x slab, then 1-D complex transforms along x, one batch
- * per y row. The pieces are fixed by the dims alone and each is one FFTW plan
- * execution, so the threads only decide who runs a piece: the result is bit-identical
- * for any thread count (FFTW's own threaded plans split by thread count). An all-zero
- * slab is not transformed (its transform is zero). Plans are cached per dims;
- * thread-safe. \a in is not modified; both arrays must come from fftw_malloc. */
+/** \brief Forward r2c 3-D DFT (unnormalized) of the nx x ny x nz array \a in into the
+ *  nx x ny x (nz/2+1) array \a out, both from fftw_malloc: one 2-D r2c per x slab,
+ *  then 1-D transforms along x per y row. The pieces depend on the dims alone, so the
+ *  result is bit-identical for any thread count (FFTW's threaded plans are not). */
 void forwardFft3d(const Eigen::Vector3i& dims, const double* in,
                   std::complex<double>* out, int num_threads);
 
-/** \brief Inverse c2r 3-D DFT (unnormalized), the exact reverse split of forwardFft3d.
- *  \a in (nx x ny x (nz/2+1)) is destroyed; \a out receives nx x ny x nz reals.
- *  \param[in] prepare if set, called once for every contiguous run [first, first +
- *  count) of \a in (the nz/2+1 coefficients of one (x, y)) just before its transform,
- *  from whichever thread transforms it; it may rewrite that run only. It lets an
- *  element-wise product run inside the transform's loop instead of its own. */
+/** \brief Inverse c2r 3-D DFT (unnormalized), the reverse of forwardFft3d; destroys
+ *  \a in. \param[in] prepare if set, called for every run [first, first + count) of
+ *  \a in (the coefficients of one (x, y)) just before its transform; it may rewrite
+ *  that run only. */
 void inverseFft3d(
     const Eigen::Vector3i& dims, std::complex<double>* in, double* out, int num_threads,
     const std::function<void(std::size_t first, std::size_t count)>& prepare = {});

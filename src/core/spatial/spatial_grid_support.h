@@ -2,8 +2,8 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * Checks and circular-index helpers shared by the 3-D correlation and its peak
- * analysis.
+ * Checks and circular-index helpers shared by the 3-D correlation, its peak and the
+ * peak's covariance.
  */
 #pragma once
 
@@ -54,6 +54,28 @@ inline int wrapIndex(int i, int n)
 {
   const int r = i % n;
   return r < 0 ? r + n : r;
+}
+
+/** Neighbors below this fraction of the peak are FFT round-off rather than peak shape:
+ *  the sub-voxel fit then uses the raw values, not their logs. */
+constexpr double kLogFloor = 1e-6;
+
+/** The value of \a c at the index \a p, wrapped around. */
+inline double valueAtWrapped(const SpatialVolume& c, const Eigen::Vector3i& p)
+{
+  const Eigen::Vector3i& n = c.grid.dims;
+  return c.values[c.grid.flatIndex(wrapIndex(p.x(), n.x()), wrapIndex(p.y(), n.y()),
+                                   wrapIndex(p.z(), n.z()))];
+}
+
+/** The values before \a peak on \a axis, at it and after it (wrapped). */
+inline Eigen::Vector3d axisValues(const SpatialVolume& c, const Eigen::Vector3i& peak,
+                                  int axis)
+{
+  Eigen::Vector3i before = peak, after = peak;
+  --before[axis];
+  ++after[axis];
+  return {valueAtWrapped(c, before), valueAtWrapped(c, peak), valueAtWrapped(c, after)};
 }
 
 } // namespace detail

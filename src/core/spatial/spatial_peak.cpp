@@ -15,8 +15,11 @@
 
 namespace pcl::phaser {
 
+using detail::axisValues;
 using detail::checkVolume;
+using detail::kLogFloor;
 using detail::resolveThreads;
+using detail::valueAtWrapped;
 using detail::wrapIndex;
 using detail::wrapLag;
 
@@ -24,16 +27,6 @@ namespace {
 
 /** Half width of the lags around the peak that the sidelobe statistics skip. */
 constexpr int kPeakExclusionRadius = 2;
-/** Neighbors below this fraction of the peak are FFT round-off rather than peak shape;
- *  their logs would give a meaningless Gaussian fit, so the raw parabola is used. */
-constexpr double kLogFloor = 1e-6;
-
-double sampleWrapped(const SpatialVolume& c, const Eigen::Vector3i& p)
-{
-  const Eigen::Vector3i& n = c.grid.dims;
-  return c.values[c.grid.flatIndex(wrapIndex(p.x(), n.x()), wrapIndex(p.y(), n.y()),
-                                   wrapIndex(p.z(), n.z()))];
-}
 
 /** Vertex of the parabola through (-1, a), (0, b), (1, c); 0 if it is not a maximum. */
 double parabolaVertex(double a, double b, double c)
@@ -51,11 +44,8 @@ Eigen::Vector3d refineAxes(const SpatialVolume& c, const Eigen::Vector3i& peak,
   for (int axis = 0; axis < 3; ++axis) {
     if (c.grid.dims[axis] < 3)
       continue; // both neighbors are the same voxel (or the peak itself)
-    Eigen::Vector3i lo = peak, hi = peak;
-    --lo[axis];
-    ++hi[axis];
-    double a = sampleWrapped(c, lo), b = sampleWrapped(c, peak),
-           d = sampleWrapped(c, hi);
+    const Eigen::Vector3d values = axisValues(c, peak, axis);
+    double a = values[0], b = values[1], d = values[2];
     if (use_log && b > 0.0 && a > kLogFloor * b && d > kLogFloor * b) {
       a = std::log(a);
       b = std::log(b);
@@ -90,60 +80,70 @@ void laplacian(const SpatialVolume& c, SpatialRealArray& lap, int first, int las
   }
 }
 
+/** Per-slab sums over the lags of \a lap outside the (2 kPeakExclusionRadius + 1)^3
+ *  block around \a peak: of L - mean, or of (L - mean)^2 when \a squared, with their
+ *  counts, for the x slabs [first, last). */
+struct SidelobeSums {
+  std::vector<double> sum;
+  std::vector<std::size_t> count;
+
+  void addSlabs(const SpatialGrid& grid, const SpatialRealArray& lap,
+                const Eigen::Vector3i& peak, double mean, bool squared, int first,
+                int last)
+  {
+    const Eigen::Vector3i& n = grid.dims;
+    const auto near_peak = [&](int x, int y, int z) {
+      const Eigen::Vector3i p(x, y, z);
+      for (int a = 0; a < 3; ++a)
+        if (std::abs(wrapLag(wrapIndex(p[a] - peak[a], n[a]), n[a])) >
+            kPeakExclusionRadius)
+          return false;
+      return true;
+    };
+    for (int x = first; x < last; ++x) {
+      double slab_sum = 0.0;
+      std::size_t k = 0;
+      const bool x_near = std::abs(wrapLag(wrapIndex(x - peak.x(), n.x()), n.x())) <=
+                          kPeakExclusionRadius;
+      for (int y = 0; y < n.y(); ++y) {
+        const double* l = &lap[grid.flatIndex(x, y, 0)];
+        for (int z = 0; z < n.z(); ++z) {
+          if (x_near && near_peak(x, y, z))
+            continue;
+          const double v = l[z] - mean;
+          slab_sum += squared ? v * v : v;
+          ++k;
+        }
+      }
+      sum[static_cast<std::size_t>(x)] = slab_sum;
+      count[static_cast<std::size_t>(x)] = k;
+    }
+  }
+
+  /** The slabs' sums added in slab order (the same for any thread count). */
+  double total(std::size_t& total_count) const
+  {
+    double all = 0.0;
+    total_count = 0;
+    for (std::size_t x = 0; x < sum.size(); ++x) {
+      all += sum[x];
+      total_count += count[x];
+    }
+    return all;
+  }
+};
+
 /** Peak-to-sidelobe ratio of the discrete Laplacian L = c - mean of the 6 face
  *  neighbors. The high-pass removes the broad overlap pyramid that correlations of
  *  non-negative occupancy grids sit on and that would dominate a plain PSR of c (at 64
  *  voxels a true match scored 7.3 against 6.0 for unrelated clouds; with L, 44 against
- *  11). Statistics skip the 5x5x5 lags around the peak; per-slab partial sums are added
- *  in slab order, and two passes (mean, then squared deviations) avoid cancellation. */
+ *  11). Two passes (mean, then squared deviations) avoid cancellation. */
 double peakScore(const SpatialVolume& c, const Eigen::Vector3i& peak, int threads)
 {
   const SpatialGrid& grid = c.grid;
-  const Eigen::Vector3i& n = grid.dims;
-  const int nx = n.x(), ny = n.y(), nz = n.z();
-  const auto near_peak = [&](int x, int y, int z) {
-    const Eigen::Vector3i p(x, y, z);
-    for (int a = 0; a < 3; ++a)
-      if (std::abs(wrapLag(wrapIndex(p[a] - peak[a], n[a]), n[a])) >
-          kPeakExclusionRadius)
-        return false;
-    return true;
-  };
-  // Per-slab partial sums, added in slab order by one thread: the same result for any
-  // thread count.
-  std::vector<double> slab_sum(static_cast<std::size_t>(nx));
-  std::vector<std::size_t> slab_count(static_cast<std::size_t>(nx));
-  const auto slab_sums = [&](const SpatialRealArray& lap, double mean, bool squared,
-                             int first, int last) {
-    for (int x = first; x < last; ++x) {
-      double sum = 0.0;
-      std::size_t k = 0;
-      const bool x_near =
-          std::abs(wrapLag(wrapIndex(x - peak.x(), nx), nx)) <= kPeakExclusionRadius;
-      for (int y = 0; y < ny; ++y) {
-        const double* l = &lap[grid.flatIndex(x, y, 0)];
-        for (int z = 0; z < nz; ++z) {
-          if (x_near && near_peak(x, y, z))
-            continue;
-          const double v = l[z] - mean;
-          sum += squared ? v * v : v;
-          ++k;
-        }
-      }
-      slab_sum[static_cast<std::size_t>(x)] = sum;
-      slab_count[static_cast<std::size_t>(x)] = k;
-    }
-  };
-  const auto add_slabs = [&](std::size_t& count) {
-    double sum = 0.0;
-    count = 0;
-    for (std::size_t x = 0; x < slab_sum.size(); ++x) {
-      sum += slab_sum[x];
-      count += slab_count[x];
-    }
-    return sum;
-  };
-  // The Laplacian volume, computed once, then the two passes.
+  const int nx = grid.dims.x();
+  SidelobeSums sums{std::vector<double>(static_cast<std::size_t>(nx)),
+                    std::vector<std::size_t>(static_cast<std::size_t>(nx))};
   SpatialRealArray lap(grid.size());
   const auto slabs = [&](const auto& per_slabs) {
     detail::parallelFor(nx, 4, threads,
@@ -153,15 +153,17 @@ double peakScore(const SpatialVolume& c, const Eigen::Vector3i& peak, int thread
   };
   slabs([&](int first, int last) {
     laplacian(c, lap, first, last);
-    slab_sums(lap, 0.0, false, first, last);
+    sums.addSlabs(grid, lap, peak, 0.0, false, first, last);
   });
   std::size_t count = 0;
-  const double total = add_slabs(count);
+  const double total = sums.total(count);
   if (count == 0) // the window covers the whole (tiny) grid: nothing to compare with
     return 0.0;
   const double mean = total / static_cast<double>(count);
-  slabs([&](int first, int last) { slab_sums(lap, mean, true, first, last); });
-  const double deviation = std::sqrt(add_slabs(count) / static_cast<double>(count));
+  slabs([&](int first, int last) {
+    sums.addSlabs(grid, lap, peak, mean, true, first, last);
+  });
+  const double deviation = std::sqrt(sums.total(count) / static_cast<double>(count));
   const double height = lap[grid.flatIndex(peak.x(), peak.y(), peak.z())] - mean;
   if (!(height > 0.0))
     return 0.0; // flat surface, or no peak standing out
@@ -213,12 +215,12 @@ bool apartFrom(const SpatialGrid& grid, const Eigen::Vector3i& i,
 /** Whether voxel \a i is at least as high as its six face neighbors (wrapped). */
 bool localMaximum(const SpatialVolume& c, const Eigen::Vector3i& i)
 {
-  const double v = sampleWrapped(c, i);
+  const double v = valueAtWrapped(c, i);
   for (int a = 0; a < 3; ++a)
     for (int d = -1; d <= 1; d += 2) {
       Eigen::Vector3i j = i;
       j[a] += d;
-      if (sampleWrapped(c, j) > v)
+      if (valueAtWrapped(c, j) > v)
         return false;
     }
   return true;

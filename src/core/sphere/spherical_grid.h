@@ -10,19 +10,10 @@
 
 namespace pcl::phaser {
 
-/** \brief Driscoll-Healy sampling of the sphere at bandwidth B (2B x 2B cells).
- *
- * Ring j has colatitude theta_j = pi (2j+1) / (4B), column k azimuth phi_k = pi k / B.
- * Samples are stored row-major, one row per ring: f[j * 2B + k]. The poles are never
- * sampled. See doc/so3-correlation-spec.md section 1.
- */
-struct SphericalGrid {
-  int bandwidth = 0;
-  /** \brief Size of one side, 2B. */
-  int size() const { return 2 * bandwidth; }
-  /** \brief Number of samples, 4B^2. */
-  int numSamples() const { return 4 * bandwidth * bandwidth; }
-};
+/** \brief Driscoll-Healy sampling of the sphere at bandwidth B (2B x 2B cells): ring j
+ *  has colatitude theta_j = pi (2j+1) / (4B), column k azimuth phi_k = pi k / B.
+ *  Samples are stored row-major, one row per ring: f[j * 2B + k]. The poles are never
+ *  sampled. */
 
 /** \brief Colatitude of ring j. */
 double ringColatitude(int ring, int bandwidth);

@@ -16,18 +16,36 @@ namespace pcl::phaser {
  *  Negative orders follow from F(l, -m) = (-1)^m conj(F(l, m)). */
 using SphericalSpectrum = Eigen::MatrixXcd;
 
+/** \brief Orthonormal associated Legendre functions with the Condon-Shortley phase,
+ *  Pbar_l^m(x), so that Y_l^m = Pbar_l^m(cos theta) e^{i m phi} is orthonormal on S^2.
+ *  Evaluated for 0 <= m <= l < B by a log-space start and the three-term recurrence
+ *  (accurate up to B = 256).
+ * \param[in] bandwidth B
+ * \param[in] x the argument cos(theta), in [-1, 1]
+ * \return values at index legendreIndex(l, m, B)
+ */
+std::vector<double> normalizedLegendre(int bandwidth, double x);
+
+/** \brief Position of (l, m) in the packed arrays: column-major in m, l = m..B-1. */
+inline int legendreIndex(int l, int m, int bandwidth)
+{
+  // Offset of column m is sum_{k<m} (B - k) = m B - m (m - 1) / 2.
+  return m * bandwidth - m * (m - 1) / 2 + (l - m);
+}
+
+/** \brief Number of (l, m) pairs with 0 <= m <= l < B. */
+inline int legendreCount(int bandwidth)
+{
+  return bandwidth * (bandwidth + 1) / 2;
+}
+
 /** \brief Squared L2 norm of the real function with spectrum \a F:
  *  sum_l |F(l,0)|^2 + 2 sum_{m>=1} |F(l,m)|^2. */
 double spectrumSquaredNorm(const SphericalSpectrum& F);
 
-/** \brief Forward (and, for tests, inverse) spherical harmonic transform of real
- *  functions sampled on the Driscoll-Healy grid (doc/so3-correlation-spec.md section
- * 2).
- *
- * The tables (weights, Legendre values for the northern rings) and FFTW plans are built
- * once per bandwidth; use instance() to share them. All methods are const and
- * thread-safe.
- */
+/** \brief Forward and inverse spherical harmonic transform of real functions sampled
+ *  on the Driscoll-Healy grid. Tables and FFTW plans are built once per bandwidth
+ *  (instance() shares them); all methods are const and thread-safe. */
 class SphericalHarmonicTransform {
 public:
   /** \brief Shared instance for \a bandwidth, built on first use (thread-safe).

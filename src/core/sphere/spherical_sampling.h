@@ -17,23 +17,16 @@ struct SphericalSamples {
   int observed_cells = 0;     ///< cells that received at least one point
 };
 
-/** \brief The Driscoll-Healy cell of every point (-1 for the center and non-finite
- *  points), computed once and shared by all channels of a cloud.
- *  \param[in] points 3 x n, relative to the projection center
- *  \param[in] bandwidth B (1..256)
- *  \param[in] num_threads worker threads; the result does not depend on it */
+/** \brief The Driscoll-Healy cell (cellIndex) of every point of \a points (3 x n,
+ *  relative to the projection center) at \a bandwidth; independent of \a num_threads.
+ */
 std::vector<int> sphereCells(const Eigen::Matrix3Xd& points, int bandwidth,
                              int num_threads = 1);
 
-/** \brief Bins per-point values into the 2B x 2B Driscoll-Healy cells given by
- *  sphereCells: each observed cell takes the mean of its points' values; the mean over
- *  the observed cells is then subtracted and unobserved cells stay at zero, so the
- *  polar caps outside a LiDAR's vertical field of view and the shadows inject no signal
- *  (the reference implementation smeared the nearest ring over them). Points with cell
- *  -1 (the center, non-finite points) are skipped.
- *  \param[in] cells from sphereCells
- *  \param[in] values one per point
- *  \param[in] bandwidth B of the cells */
+/** \brief Bins one value per point into the cells of sphereCells: each observed cell
+ *  takes the mean of its points' values, less the mean over the observed cells;
+ *  unobserved cells (outside the field of view, shadows) stay zero. Points with cell -1
+ *  and non-finite values are skipped. */
 SphericalSamples binOnSphere(const std::vector<int>& cells,
                              const Eigen::VectorXd& values, int bandwidth);
 

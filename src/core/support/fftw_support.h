@@ -16,7 +16,11 @@ namespace detail {
 
 /** \brief The one mutex that guards every FFTW planner call in the process (planning is
  *  not thread-safe; executing an existing plan with the new-array interface is). */
-std::mutex& fftwPlannerMutex();
+inline std::mutex& fftwPlannerMutex()
+{
+  static std::mutex mutex;
+  return mutex;
+}
 
 /** \brief Planner flags used everywhere: FFTW_ESTIMATE picks the same algorithm in
  * every run, so results are reproducible across processes (FFTW_MEASURE is not). */

@@ -20,10 +20,8 @@ namespace pcl::phaser::detail {
 
 namespace {
 
-/** How long a thread out of work polls before it blocks: long enough to catch the next
- *  loop of an align (the serial steps between them are mostly shorter), short against
- *  the time slice a spinning thread would take from a thread that works on a busy
- *  machine. */
+/** How long a thread out of work polls before it blocks: most serial steps between
+ *  an align's loops are shorter, and a time slice is much longer. */
 constexpr std::chrono::microseconds kPoll(50);
 
 /** Polls \a ready for up to kPoll; whether it became true. */
@@ -39,9 +37,8 @@ bool poll(const Ready& ready)
   return false;
 }
 
-/** One call of parallelFor: its chunks go to whoever asks first. Shared with the
- *  workers it invited, which may arrive after it ended (they then find no chunk and
- *  never touch the body, which lives on the caller's stack). */
+/** One call of parallelFor: its chunks go to whoever asks first. Workers arriving after
+ *  it ended find no chunk and never touch the body (on the caller's stack). */
 struct Job {
   const ChunkBody* body = nullptr;
   std::ptrdiff_t count = 0, chunk = 0, chunks = 0;
@@ -81,8 +78,7 @@ struct Job {
   }
 };
 
-/** Worker threads, started when first needed and kept for the process; they sleep on a
- *  condition variable between jobs. */
+/** Worker threads, started when first needed and kept; they sleep between jobs. */
 class Pool {
 public:
   ~Pool()

@@ -3,12 +3,9 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  *
  * The engine's work sharing: a loop split into chunks, run by the calling thread and
- * the workers of a process-wide pool. A robot runs other programs: when the scheduler
- * parks a worker, OpenMP's barriers wait for it, and its waiting threads spin, taking
- * time from the threads that work; two threads were up to 1.7x slower than one on a
- * machine with a busy core (doc/benchmarks.md 11.18). Here the caller never waits for a
- * worker that holds no chunk, and a thread out of work polls for at most 50
- * microseconds before it blocks.
+ * the workers of a process-wide pool. The caller never waits for a worker that holds
+ * no chunk (OpenMP's barriers wait for parked workers: two threads measured up to 1.7x
+ * slower than one beside a busy core).
  */
 #pragma once
 
@@ -23,15 +20,11 @@ namespace pcl::phaser::detail {
 using ChunkBody =
     std::function<void(std::ptrdiff_t first, std::ptrdiff_t last, int slot)>;
 
-/** \brief Runs \a body over [0, count) in chunks of \a chunk indices (the last may be
- *  shorter), each on whichever of the calling thread and up to threads - 1 pool workers
- *  asks first. Returns when every chunk has ended; a worker that took none is not
- *  waited for. Runs on the calling thread alone when \a threads <= 1, when there is one
- *  chunk, or when no worker can be started. The chunks must be independent (write
- *  disjoint data), so results do not depend on which thread runs which. The first
- *  exception a chunk throws is rethrown after the others have ended (chunks not yet
- *  started then are skipped). Safe to call from several threads at once, and from
- *  inside a chunk (the inner call runs on the calling thread when the pool is busy). */
+/** \brief Runs \a body over [0, count) in chunks of \a chunk indices, each on whichever
+ *  of the calling thread and up to threads - 1 pool workers asks first; returns when
+ *  every chunk has ended. Chunks must write disjoint data. The first exception a chunk
+ *  throws is rethrown after the others ended (chunks not yet started are skipped).
+ *  Safe from several threads at once and from inside a chunk. */
 void parallelFor(std::ptrdiff_t count, std::ptrdiff_t chunk, int threads,
                  const ChunkBody& body);
 

@@ -1,10 +1,6 @@
 /*
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
- *
- * Bingham distribution: exact normalization constant, maximum-likelihood fit
- * (Bingham 1974), rotation-vector covariance and rejection sampler (Kent, Ganeiber &
- * Mardia 2013). Derivations are in the comments; see also bingham.h.
  */
 #include "support/error.h"
 
@@ -28,20 +24,19 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kTwoPiSquared = 2.0 * kPi * kPi;
-/** GK21 |Kronrod - Gauss| is a very pessimistic error bound for smooth integrands, so
- *  this tolerance yields ~1e-13 actual relative error. */
+/** GK21 |Kronrod - Gauss| overestimates the error of smooth integrands: this gives
+ *  ~1e-13 actual relative error. */
 constexpr double kQuadratureTolerance = 1e-11;
 constexpr std::size_t kMaxPieces = 4000;
 
-/** Combinations sum_n c(n) e^{-x} I_n(x) (n = 0, 1, 2, x >= 0) for the six rows of
- *  \a c, each evaluated as one series so that the small differences needed for the
- *  off-mode circle moments (e.g. I0 - I1 ~ I0 / 2x) do not cancel for large x. */
+/** sum_n c(n) e^{-x} I_n(x) (n = 0, 1, 2, x >= 0) for the six rows of \a c, each as one
+ *  series, so differences such as I0 - I1 ~ I0 / 2x do not cancel for large x. */
 std::array<double, 6> besselCombos(double x, const double (&c)[6][3])
 {
   std::array<double, 6> out{};
   if (x < 20.0) {
-    // Power series I_n(x) = sum_k (x/2)^{2k+n} / (k! (k+n)!): positive terms; the mild
-    // cancellation of the differences costs < 3 digits below x = 20.
+    // Power series I_n(x) = sum_k (x/2)^{2k+n} / (k! (k+n)!); the differences lose
+    // < 3 digits below x = 20.
     double in[3];
     const double h = 0.5 * x, h2 = h * h;
     for (int n = 0; n < 3; ++n) {
@@ -57,8 +52,7 @@ std::array<double, 6> besselCombos(double x, const double (&c)[6][3])
     return out;
   }
   // Asymptotic expansion e^{-x} I_n(x) ~ (2 pi x)^{-1/2} sum_k (-1)^k a_k(n) / x^k,
-  // a_k(n) = prod_{j<=k} (4n^2 - (2j-1)^2) / (k! 8^k), combined term by term; for
-  // x >= 20 the smallest term is below e^{-2x} < 1e-17 of the leading one.
+  // a_k(n) = prod_{j<=k} (4n^2 - (2j-1)^2) / (k! 8^k), combined term by term.
   double a[3] = {1.0, 1.0, 1.0}, power = 1.0;
   std::array<double, 6> sum{};
   for (int k = 0; k < 2 * int(x) + 2 && k < 120; ++k) {
@@ -82,11 +76,8 @@ std::array<double, 6> besselCombos(double x, const double (&c)[6][3])
   return out;
 }
 
-/** Moments of the circle integral int_0^{2pi} g(al) e^{a cos^2 al + b sin^2 al} dal
- *  for g = 1, cos^2, sin^2, cos^4, sin^4, cos^2 sin^2, divided by 2 pi e^{max(a,b)}.
- *  With u = (a - b)/2 the weight is e^{(a+b)/2} e^{u cos 2al}, and
- *  (1/2pi) int cos^k(phi) e^{u cos phi} dphi gives I0, I1, (I0 + I2)/2 for k = 0, 1, 2.
- */
+/** int_0^{2pi} g(al) e^{a cos^2 al + b sin^2 al} dal / (2 pi e^{max(a,b)}) for g = 1,
+ *  cos^2, sin^2, cos^4, sin^4, cos^2 sin^2: Bessel combinations of u = |a - b| / 2. */
 struct CircleMoments {
   double one, cos2, sin2, cos4, sin4, cos2sin2;
 };
@@ -122,8 +113,8 @@ std::vector<double> gradedMesh(double a, double b, double width)
 }
 
 /** Globally adaptive 21-point Gauss-Kronrod quadrature of a vector integrand with
- *  non-negative components: the piece with the largest error relative to its
- *  component's total is bisected until every component meets kQuadratureTolerance. */
+ *  non-negative components: the piece of largest relative error is bisected until
+ *  every component meets kQuadratureTolerance. */
 template <int K, class Integrand>
 Eigen::Matrix<double, K, 1> integrate(const Integrand& fn,
                                       const std::vector<double>& breaks)
@@ -201,16 +192,15 @@ BinghamNormalizer binghamNormalizer(const Eigen::Vector4d& z, bool with_fourth_m
 {
   if (!z.allFinite())
     throw InvalidArgument("binghamNormalizer: concentrations must be finite");
-  // Sort ascending; pair the two most concentrated directions on the circle of radius
-  // sqrt(t) and the other two on radius sqrt(1 - t) (any pairing is exact).
+  // Hopf coordinates: the two most concentrated directions on the circle of radius
+  // sqrt(t), the other two on radius sqrt(1 - t).
   std::array<int, 4> idx{0, 1, 2, 3};
   std::sort(idx.begin(), idx.end(), [&](int i, int j) { return z(i) < z(j); });
   const double z_max = z(idx[3]);
   const double a0 = z(idx[0]) - z_max, a1 = z(idx[1]) - z_max;
   const double b0 = z(idx[2]) - z_max; // b1 = 0 after the shift
-  // Surface measure in Hopf coordinates: dx = (1/2) dt dal dbe, so with the circle
-  // integrals 2 pi e^{max} (...) each, F = 2 pi^2 int_0^1 e^{t a1} P(t) Q(t) dt
-  // (max(a0, a1) = a1, max(b0, 0) = 0); x_i^2 brings t cos^2 al etc.
+  // dx = (1/2) dt dal dbe, so F = 2 pi^2 int_0^1 e^{t a1} P(t) Q(t) dt with the circle
+  // moments P, Q; x_i^2 brings t cos^2 al etc.
   using Vec15 = Eigen::Matrix<double, 15, 1>;
   const auto integrand = [&](double t) {
     const double s = 1.0 - t, e = std::exp(t * a1);
@@ -249,6 +239,44 @@ BinghamNormalizer binghamNormalizer(const Eigen::Vector4d& z, bool with_fourth_m
   return out;
 }
 
+namespace {
+
+/** F and its moments at Z = (y, 0), with the fourth moments Newton needs. */
+BinghamNormalizer normalizerAt(const Eigen::Vector3d& y)
+{
+  return binghamNormalizer(Eigen::Vector4d(y(0), y(1), y(2), 0.0), true);
+}
+
+/** One damped Newton step on the convex L(y) = log F(y, 0) - w . (y, 0) from (\a y,
+ *  its normalizer \a n), whose gradient is \a g = E[x^2] - w and Hessian
+ *  Cov(x_i^2, x_j^2) = E[x_i^2 x_j^2] - E[x_i^2] E[x_j^2]; the step is halved until
+ *  Armijo holds. False, with \a y and \a n unchanged, when no length is accepted. */
+bool dampedNewtonStep(const Eigen::Vector4d& w, const Eigen::Vector3d& g,
+                      Eigen::Vector3d& y, BinghamNormalizer& n)
+{
+  const Eigen::Vector3d m = n.moments.head<3>();
+  const Eigen::Matrix3d h = n.fourth_moments.topLeftCorner<3, 3>() - m * m.transpose();
+  // Jacobi scaling: the diagonal spans ~1/(2 z^2), i.e. many orders of magnitude.
+  const Eigen::Vector3d d = h.diagonal().cwiseSqrt().cwiseInverse();
+  const Eigen::Matrix3d hs = d.asDiagonal() * h * d.asDiagonal();
+  const Eigen::Vector3d step = -d.cwiseProduct(hs.ldlt().solve(d.cwiseProduct(g)));
+  const double l0 = n.log_f - w.head<3>().dot(y), slope = g.dot(step);
+  for (double alpha = 1.0; alpha > 1e-12; alpha *= 0.5) {
+    const Eigen::Vector3d y_new = y + alpha * step;
+    const BinghamNormalizer n_new = normalizerAt(y_new);
+    const double l_new = n_new.log_f - w.head<3>().dot(y_new);
+    // Armijo, with slack for the ~1e-13 rounding of log F near the optimum.
+    if (l_new <= l0 + 1e-4 * alpha * slope + 1e-13 * (1.0 + std::abs(l0))) {
+      y = y_new;
+      n = n_new;
+      return true;
+    }
+  }
+  return false;
+}
+
+} // namespace
+
 Eigen::Vector4d binghamMaximumLikelihood(const Eigen::Vector4d& omega, double* residual)
 {
   if (!omega.allFinite() || (omega.array() < 0.0).any() || omega.sum() <= 0.0)
@@ -266,43 +294,17 @@ Eigen::Vector4d binghamMaximumLikelihood(const Eigen::Vector4d& omega, double* r
   w.head<3>() = w.head<3>().cwiseMax(floor);
   w /= w.sum();
 
-  // Newton on the convex L(y) = log F(y, 0) - w . (y, 0): gradient E[x^2] - w, Hessian
-  // Cov(x_i^2, x_j^2) = E[x_i^2 x_j^2] - E[x_i^2] E[x_j^2]. Start from the
-  // concentrated asymptotics, shifted so that equal omegas start at z = 0.
+  // Newton from the concentrated asymptotics, shifted so that equal omegas start at
+  // z = 0.
   Eigen::Vector3d y;
   for (int i = 0; i < 3; ++i)
     y(i) = std::min(0.0, 0.5 / w(3) - 0.5 / w(i));
-  const auto evaluate = [](const Eigen::Vector3d& y3) {
-    return binghamNormalizer(Eigen::Vector4d(y3(0), y3(1), y3(2), 0.0), true);
-  };
-  BinghamNormalizer n = evaluate(y);
+  BinghamNormalizer n = normalizerAt(y);
   double res = 0.0;
   for (int iter = 0; iter < 200; ++iter) {
     const Eigen::Vector3d g = n.moments.head<3>() - w.head<3>();
     res = g.cwiseQuotient(w.head<3>()).cwiseAbs().maxCoeff();
-    if (res < 1e-10)
-      break;
-    const Eigen::Vector3d m = n.moments.head<3>();
-    const Eigen::Matrix3d h =
-        n.fourth_moments.topLeftCorner<3, 3>() - m * m.transpose();
-    // Jacobi scaling: the diagonal spans ~1/(2 z^2), i.e. many orders of magnitude.
-    const Eigen::Vector3d d = h.diagonal().cwiseSqrt().cwiseInverse();
-    const Eigen::Matrix3d hs = d.asDiagonal() * h * d.asDiagonal();
-    const Eigen::Vector3d step = -d.cwiseProduct(hs.ldlt().solve(d.cwiseProduct(g)));
-    const double l0 = n.log_f - w.head<3>().dot(y), slope = g.dot(step);
-    bool accepted = false;
-    for (double alpha = 1.0; alpha > 1e-12 && !accepted; alpha *= 0.5) {
-      const Eigen::Vector3d y_new = y + alpha * step;
-      const BinghamNormalizer n_new = evaluate(y_new);
-      const double l_new = n_new.log_f - w.head<3>().dot(y_new);
-      // Armijo, with slack for the ~1e-13 rounding of log F near the optimum.
-      if (l_new <= l0 + 1e-4 * alpha * slope + 1e-13 * (1.0 + std::abs(l0))) {
-        y = y_new;
-        n = n_new;
-        accepted = true;
-      }
-    }
-    if (!accepted)
+    if (res < 1e-10 || !dampedNewtonStep(w, g, y, n))
       break;
   }
   if (residual)
@@ -366,43 +368,6 @@ Eigen::Matrix3d BinghamDistribution::tangentCovariance(TangentFrame frame) const
     cov += (r(1 + i) / r(0)) * v * v.transpose();
   }
   return cov;
-}
-
-std::vector<Eigen::Vector4d> BinghamDistribution::sample(std::size_t n,
-                                                         std::mt19937& rng) const
-{
-  // Kent, Ganeiber & Mardia (2013): for the density exp(-x^T A x), A = diag(lambda) >=
-  // 0 in the frame of M, the angular central Gaussian (x^T W x)^{-2} with W = I + 2A/b
-  // bounds it as exp(-x^T A x) <= B (x^T W x)^{-2}: with y = x^T A x, x^T W x = 1 +
-  // 2y/b and exp(-y)(1 + 2y/b)^2 peaks at y = (4 - b)/2, giving B = exp(-(4 - b)/2)
-  // (4/b)^2. Their efficient b solves sum_i 1/(b + 2 lambda_i) = 1.
-  const Eigen::Vector4d lambda = (Z.maxCoeff() - Z.array()).matrix();
-  double lo = 0.0, hi = 4.0; // the root lies in (0, 4] since min lambda = 0
-  for (int i = 0; i < 200; ++i) {
-    const double b = 0.5 * (lo + hi);
-    ((1.0 / (b + 2.0 * lambda.array())).sum() > 1.0 ? lo : hi) = b;
-  }
-  const double b = hi, log_bound = -(4.0 - b) / 2.0 + 2.0 * std::log(4.0 / b);
-  const Eigen::Vector4d stddev =
-      (1.0 / (1.0 + 2.0 * lambda.array() / b)).sqrt().matrix();
-  std::normal_distribution<double> normal;
-  std::uniform_real_distribution<double> uniform;
-  std::vector<Eigen::Vector4d> out;
-  out.reserve(n);
-  while (out.size() < n) {
-    Eigen::Vector4d x;
-    for (int i = 0; i < 4; ++i)
-      x(i) = stddev(i) * normal(rng);
-    if (x.norm() == 0.0)
-      continue;
-    x.normalize();
-    const double y = lambda.dot(x.cwiseAbs2());
-    if (std::log(uniform(rng)) < -y + 2.0 * std::log1p(2.0 * y / b) - log_bound) {
-      Eigen::Vector4d q = M * x;
-      out.push_back(q(0) < 0.0 ? Eigen::Vector4d(-q) : q);
-    }
-  }
-  return out;
 }
 
 BinghamDistribution makeBingham(const Eigen::Matrix4d& M, const Eigen::Vector4d& Z)

@@ -2,7 +2,8 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  */
-#include "so3/so3_grid.h"
+#include "so3/so3_correlation_grid.h"
+#include "spatial/spatial_grid_support.h"
 #include "support/error.h"
 #include "support/parallel.h"
 #include "uncertainty/peak_neighborhood.h"
@@ -14,12 +15,12 @@
 
 namespace pcl::phaser {
 
-namespace {
+using detail::axisValues;
+using detail::kLogFloor;
+using detail::valueAtWrapped;
+using detail::wrapIndex;
 
-inline int wrap(int i, int n)
-{
-  return ((i % n) + n) % n;
-}
+namespace {
 
 /** Grid value at a possibly out-of-range index (see rotationNeighborhood). */
 double valueAt(const So3CorrelationGrid& grid, int j, int a, int c)
@@ -30,7 +31,7 @@ double valueAt(const So3CorrelationGrid& grid, int j, int a, int c)
     a += Bo;
     c -= Bo;
   }
-  return grid(j, wrap(a, N), wrap(c, N));
+  return grid(j, wrapIndex(a, N), wrapIndex(c, N));
 }
 
 } // namespace
@@ -157,62 +158,7 @@ std::vector<So3GridIndex> distinctPeaks(const So3CorrelationGrid& grid, int coun
   return peaks;
 }
 
-TranslationGaussian translationGaussian(const SpatialVolume& correlation,
-                                        const Eigen::Vector3i& peak, int radius)
-{
-  if (radius < 1)
-    throw InvalidArgument("translationGaussian: radius must be >= 1");
-  const SpatialGrid& g = correlation.grid;
-  std::vector<Eigen::Vector3d> lags;
-  std::vector<double> values;
-  double lowest = std::numeric_limits<double>::infinity();
-  for (int dx = -radius; dx <= radius; ++dx)
-    for (int dy = -radius; dy <= radius; ++dy)
-      for (int dz = -radius; dz <= radius; ++dz) {
-        const Eigen::Vector3i d(dx, dy, dz);
-        Eigen::Vector3i idx;
-        Eigen::Vector3d lag;
-        for (int k = 0; k < 3; ++k) {
-          idx[k] = wrap(peak[k] + d[k], g.dims[k]);
-          int l = idx[k]; // signed lag: indices above n/2 are negative shifts
-          if (l > g.dims[k] / 2)
-            l -= g.dims[k];
-          lag[k] = l;
-        }
-        const double v = correlation.values[g.flatIndex(idx.x(), idx.y(), idx.z())];
-        lags.push_back(g.origin + lag * g.voxel_size);
-        values.push_back(v);
-        lowest = std::min(lowest, v);
-      }
-  TranslationGaussian out;
-  double total = 0.0;
-  for (std::size_t i = 0; i < lags.size(); ++i) {
-    const double w = values[i] - lowest;
-    out.mean += w * lags[i];
-    total += w;
-  }
-  if (!(total > 0.0)) { // a flat block: no information beyond the peak itself
-    out.mean = lags[lags.size() / 2];
-    out.covariance = Eigen::Matrix3d::Identity() * std::pow(radius * g.voxel_size, 2);
-    return out;
-  }
-  out.mean /= total;
-  for (std::size_t i = 0; i < lags.size(); ++i) {
-    const Eigen::Vector3d d = lags[i] - out.mean;
-    out.covariance += (values[i] - lowest) / total * d * d.transpose();
-  }
-  return out;
-}
-
 namespace {
-
-/** The correlation at integer lag \a p (wrapped). */
-double volumeAt(const SpatialVolume& c, const Eigen::Vector3i& p)
-{
-  const Eigen::Vector3i& n = c.grid.dims;
-  return c.values[c.grid.flatIndex(wrap(p.x(), n.x()), wrap(p.y(), n.y()),
-                                   wrap(p.z(), n.z()))];
-}
 
 /** Running mean and variance (Welford), deterministic for a fixed order. */
 struct RunningVariance {
@@ -227,10 +173,6 @@ struct RunningVariance {
   }
   double variance() const { return count > 1 ? m2 / static_cast<double>(count) : 0.0; }
 };
-
-/** Neighbors below this fraction of the peak make findSpatialPeak fit the raw values
- *  (its kLogFloor). */
-constexpr double kLogFloor = 1e-6;
 
 } // namespace
 
@@ -254,16 +196,12 @@ CorrelationSidelobes correlationSidelobes(const SpatialVolume& correlation,
             std::abs(dz) <= kSidelobeInnerRadius)
           continue;
         const Eigen::Vector3i p = peak + Eigen::Vector3i(dx, dy, dz);
-        const double center = volumeAt(correlation, p);
         for (int a = 0; a < 3; ++a) {
           if (n[a] < 3)
             continue;
-          Eigen::Vector3i m = p, q = p;
-          --m[a];
-          ++q[a];
-          const double vm = volumeAt(correlation, m), vq = volumeAt(correlation, q);
-          first[a].add(vq - vm);
-          second[a].add(vm - 2.0 * center + vq);
+          const Eigen::Vector3d v = axisValues(correlation, p, a);
+          first[a].add(v[2] - v[0]);
+          second[a].add(v[0] - 2.0 * v[1] + v[2]);
         }
       }
   CorrelationSidelobes out;
@@ -283,11 +221,8 @@ Eigen::Matrix3d subVoxelPeakCovariance(const SpatialVolume& correlation,
   for (int a = 0; a < 3; ++a) {
     double var = 1.0 / 12.0; // no usable maximum on this axis: one voxel, uniform
     if (correlation.grid.dims[a] >= 3) {
-      Eigen::Vector3i m = peak, q = peak;
-      --m[a];
-      ++q[a];
-      const double va = volumeAt(correlation, m), vb = volumeAt(correlation, peak),
-                   vd = volumeAt(correlation, q);
+      const Eigen::Vector3d v = axisValues(correlation, peak, a);
+      const double va = v[0], vb = v[1], vd = v[2];
       // Fitted values and the factors that turn value errors into fitted-value errors.
       double fa = va, fb = vb, fd = vd, sa = 1.0, sd = 1.0;
       if (vb > 0.0 && va > kLogFloor * vb && vd > kLogFloor * vb) {
@@ -322,11 +257,8 @@ Eigen::Matrix3d interpolationModelCovariance(const SpatialVolume& correlation,
   for (int a = 0; a < 3; ++a) {
     if (correlation.grid.dims[a] < 3)
       continue;
-    Eigen::Vector3i m = peak, q = peak;
-    --m[a];
-    ++q[a];
-    const double va = volumeAt(correlation, m), vb = volumeAt(correlation, peak),
-                 vd = volumeAt(correlation, q);
+    const Eigen::Vector3d v = axisValues(correlation, peak, a);
+    const double va = v[0], vb = v[1], vd = v[2];
     const double k = va - 2.0 * vb + vd;
     if (!(vb > 0.0 && va > kLogFloor * vb && vd > kLogFloor * vb) || !(k < 0.0))
       continue; // one model only (or none): no disagreement to measure
@@ -348,7 +280,7 @@ Eigen::Matrix3d translationCovariance(const SpatialVolume& correlation,
   if (!(energy_product > 0.0) || !std::isfinite(energy_product))
     throw InvalidArgument("translationCovariance: the energy product must be > 0");
   CorrelationSidelobes noise = correlationSidelobes(correlation, peak);
-  const double c = volumeAt(correlation, peak);
+  const double c = valueAtWrapped(correlation, peak);
   // Mismatch fraction 1 - rho^2, kept >= 1e-6: identical clouds still differ by the
   // resampling of the voxel grid, and a zero would make the covariance singular.
   const double mismatch = std::clamp(1.0 - c * c / energy_product, 1e-6, 1.0);

@@ -29,34 +29,18 @@ struct FitTerms {
   Vector6d gradient = Vector6d::Zero(); ///< sum of the g_i
 };
 
-/** The matches of refinePose's sweep at \a pose (same nearest point, normal test and
- *  weight w = sample weight x (1 - d^2 / r^2)^2). */
-FitTerms fitTerms(const PointIndex& target, const VerificationSamples& s,
+/** The matches of refinePose's sweep at \a pose (forEachPlaneMatch). */
+FitTerms fitTerms(const PointIndex& target, const VerificationSamples& samples,
                   const RigidPose& pose)
 {
-  const bool with_normals = s.normals.cols() == s.points.cols();
-  const double r2 = target.radius() * target.radius();
   FitTerms f;
   std::vector<Eigen::Vector3d> positions;
-  for (Eigen::Index i = 0; i < s.points.cols(); ++i) {
-    const Eigen::Vector3d q = pose.R * s.points.col(i) + pose.t;
-    const Eigen::Vector3d n_s = with_normals
-                                    ? Eigen::Vector3d(pose.R * s.normals.col(i))
-                                    : Eigen::Vector3d::Zero();
-    const Eigen::Index k = target.nearest(q, n_s, kMinNormalCosine);
-    if (k < 0 || target.normal(k).isZero())
-      continue;
-    const Eigen::Vector3d n = target.normal(k);
-    const Eigen::Vector3d d = q - target.point(k);
-    const double closeness = 1.0 - d.squaredNorm() / r2;
-    const double w = s.weights[i] * closeness * closeness;
-    Vector6d J;
-    J << q.cross(n), n;
-    f.H += w * J * J.transpose();
-    f.gradients.push_back(w * n.dot(d) * J);
+  forEachPlaneMatch(target, samples, pose, [&](const PlaneMatch& m) {
+    f.H += m.weight * m.jacobian * m.jacobian.transpose();
+    f.gradients.push_back(m.weight * m.residual * m.jacobian);
     f.gradient += f.gradients.back();
-    positions.push_back(q);
-  }
+    positions.push_back(m.position);
+  });
   f.positions.resize(3, static_cast<Eigen::Index>(positions.size()));
   for (std::size_t i = 0; i < positions.size(); ++i)
     f.positions.col(static_cast<Eigen::Index>(i)) = positions[i];

@@ -30,35 +30,18 @@ Eigen::Matrix3d expSo3(const Eigen::Vector3d& w)
 
 /** One Gauss-Newton sweep at \a pose: the normal equations (H, g) of the samples'
  *  weighted point-to-plane distances. Returns the number of matches. */
-int sweep(const PointIndex& target, const VerificationSamples& s, const RigidPose& pose,
-          Eigen::Matrix<double, 6, 6>& H, Eigen::Matrix<double, 6, 1>& g)
+int sweep(const PointIndex& target, const VerificationSamples& samples,
+          const RigidPose& pose, Eigen::Matrix<double, 6, 6>& H,
+          Eigen::Matrix<double, 6, 1>& g)
 {
-  const bool with_normals = s.normals.cols() == s.points.cols();
-  const double r2 = target.radius() * target.radius();
   H.setZero();
   g.setZero();
   int matched = 0;
-  for (Eigen::Index i = 0; i < s.points.cols(); ++i) {
-    const Eigen::Vector3d q = pose.R * s.points.col(i) + pose.t;
-    const Eigen::Vector3d n_s = with_normals
-                                    ? Eigen::Vector3d(pose.R * s.normals.col(i))
-                                    : Eigen::Vector3d::Zero();
-    const Eigen::Index k = target.nearest(q, n_s, kMinNormalCosine);
-    if (k < 0)
-      continue;
-    const Eigen::Vector3d n = target.normal(k);
-    if (n.isZero())
-      continue;
-    const Eigen::Vector3d p = target.point(k);
-    const double closeness = 1.0 - (q - p).squaredNorm() / r2;
-    const double w = s.weights[i] * closeness * closeness;
-    Eigen::Matrix<double, 6, 1> J;
-    J << q.cross(n), n;
-    const double e = n.dot(q - p);
-    H += w * J * J.transpose();
-    g += w * e * J;
+  forEachPlaneMatch(target, samples, pose, [&](const PlaneMatch& m) {
+    H += m.weight * m.jacobian * m.jacobian.transpose();
+    g += m.weight * m.residual * m.jacobian;
     ++matched;
-  }
+  });
   return matched;
 }
 

@@ -7,6 +7,7 @@
 #include "verification/verification.h"
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace pcl::phaser {
 
@@ -16,31 +17,61 @@ struct RigidPose {
   Eigen::Vector3d t = Eigen::Vector3d::Zero();
 };
 
-/** \brief Local refinement of a pose that verifyPose scores: Gauss-Newton steps on the
- *  point-to-plane distances of the samples to their nearest target point within the
- *  index radius r (with an agreeing normal), each weighted by the sample weight times
- *  (1 - d^2 / r^2)^2, the derivative of the closeness that PoseVerification::score
- *  averages. It climbs that score from a pose whose samples already partly touch the
- *  target (a verified hypothesis, about half a coarse voxel off); it does not search.
- *  The steps stop early when one turns less than 1e-4 rad and moves less than 1 mm.
- *  Deterministic (serial sums in sample order).
- *  \param[in] target target points with normals (samples without a matched normal
- *  are skipped) \param[in] samples source samples with weights and normals
- *  \param[in] start initial pose \param[in] iterations Gauss-Newton steps, >= 0
+/** \brief A sample the point-to-plane fit matched: its moved position q, the target
+ *  point's normal n and residual n . (q - p), and the weight (sample weight) x
+ *  (1 - |q - p|^2 / r^2)^2. */
+struct PlaneMatch {
+  Eigen::Vector3d position;
+  Eigen::Matrix<double, 6, 1> jacobian; ///< [q x n; n]
+  double weight;
+  double residual;
+};
+
+/** \brief Calls \a visit(PlaneMatch) for every sample, in sample order, whose moved
+ *  position at \a pose has a nearest target point within the index radius (with an
+ *  agreeing normal, kMinNormalCosine) that has a normal. */
+template <typename Visit>
+void forEachPlaneMatch(const PointIndex& target, const VerificationSamples& samples,
+                       const RigidPose& pose, Visit&& visit)
+{
+  const bool with_normals = samples.normals.cols() == samples.points.cols();
+  const double r2 = target.radius() * target.radius();
+  for (Eigen::Index i = 0; i < samples.points.cols(); ++i) {
+    const Eigen::Vector3d q = pose.R * samples.points.col(i) + pose.t;
+    const Eigen::Vector3d n_s = with_normals
+                                    ? Eigen::Vector3d(pose.R * samples.normals.col(i))
+                                    : Eigen::Vector3d::Zero();
+    const Eigen::Index k = target.nearest(q, n_s, kMinNormalCosine);
+    if (k < 0 || target.normal(k).isZero())
+      continue;
+    const Eigen::Vector3d n = target.normal(k);
+    const Eigen::Vector3d d = q - target.point(k);
+    const double closeness = 1.0 - d.squaredNorm() / r2;
+    PlaneMatch match;
+    match.position = q;
+    match.jacobian << q.cross(n), n;
+    match.weight = samples.weights[i] * closeness * closeness;
+    match.residual = n.dot(d);
+    visit(match);
+  }
+}
+
+/** \brief Local refinement of a pose that verifyPose scores: \a iterations
+ *  Gauss-Newton steps on the point-to-plane distances of forEachPlaneMatch, whose
+ *  weight derives from the closeness PoseVerification::score averages. It climbs from
+ *  a pose whose samples already partly touch the target; it does not search. Stops
+ *  early once a step turns less than 1e-4 rad and moves less than 1 mm. Deterministic.
  *  \return the refined pose; \a start when fewer than six samples match */
 RigidPose refinePose(const PointIndex& target, const VerificationSamples& samples,
                      const RigidPose& start, int iterations);
 
-/** \brief refinePose within a trust region: \a start as soon as a step turns the pose
- *  by more than \a max_angle (radians) or moves the sensor by more than \a max_shift
- *  (meters) from it (a climb that far left the basin it started in).
- *  \param[in] reach null, or the same target indexed at a larger radius: then one step
- *  against it comes first and re-centers the climb. It reaches samples that a start
- *  about that radius off puts beyond \a target's radius, so the \a iterations steps
- *  against \a target start in the basin of the pose the start approximates; the trust
- *  region is then around the pose it reached, which is returned if a later step leaves
- *  it. The reach step is skipped when fewer than six samples match or it leaves the
- *  region around \a start. */
+/** \brief refinePose within a trust region: the region's center as soon as a step turns
+ *  the pose by more than \a max_angle (radians) or moves the sensor by more than
+ *  \a max_shift (meters) from it (the climb left its basin).
+ *  \param[in] reach null, or the same target indexed at a larger radius: one step
+ *  against it first re-centers the climb and the trust region (skipped when it fails
+ *  or leaves the region around \a start), so a start about that radius off still
+ *  reaches the basin. */
 RigidPose refinePoseWithin(const PointIndex& target, const VerificationSamples& samples,
                            const RigidPose& start, int iterations, double max_angle,
                            double max_shift, const PointIndex* reach = nullptr);

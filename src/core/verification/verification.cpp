@@ -117,23 +117,16 @@ std::vector<double> sampleCloseness(const PointIndex& target,
       n, 256, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
         for (std::ptrdiff_t i = first; i < last; ++i) {
           const Eigen::Vector3d q = R * s.points.col(i) + t;
-          const double d2 = with_normals
-                                ? target.nearestSquaredDistance(q, R * s.normals.col(i),
-                                                                kMinNormalCosine)
-                                : target.nearestSquaredDistance(q);
+          const Eigen::Vector3d normal = with_normals
+                                             ? Eigen::Vector3d(R * s.normals.col(i))
+                                             : Eigen::Vector3d::Zero();
+          const double d2 = target.nearestSquaredDistance(
+              q, normal, with_normals ? kMinNormalCosine : 0.0);
           if (std::isfinite(d2))
             closeness[static_cast<std::size_t>(i)] = std::max(1e-12, 1.0 - d2 / r2);
         }
       });
   return closeness;
-}
-
-PoseVerification verifyPose(const PointIndex& target, const Eigen::Matrix3Xd& samples,
-                            const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
-                            int num_threads)
-{
-  return verifyPose(target, {samples, Eigen::VectorXd::Ones(samples.cols()), {}}, R, t,
-                    num_threads);
 }
 
 PoseVerification verifyPose(const PointIndex& target, const VerificationSamples& s,

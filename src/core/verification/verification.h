@@ -12,36 +12,31 @@
 
 namespace pcl::phaser {
 
-/** \brief How well a pose puts the source on the target, measured on evenly spaced
- *  source samples against the target points (PointIndex of radius r). */
+/** \brief How well a pose puts the source on the target, measured on source samples
+ *  against the target points (PointIndex of radius r); shares are weighted. */
 struct PoseVerification {
   /** \brief Share of the samples with a target point within r, in [0, 1]. */
   double inlier_fraction = 0.0;
-  /** \brief Mean of max(0, 1 - d^2 / r^2) over the samples, d the distance to the
-   *  nearest target point: the inlier share weighted by closeness, in [0, 1], which
-   *  also rewards precision (a truncated quadratic, as robust estimators use). */
+  /** \brief Mean of max(0, 1 - d^2 / r^2), d the distance to the nearest target point:
+   *  the inlier share weighted by closeness, in [0, 1]. */
   double score = 0.0;
-  /** \brief Share of the samples that lie in space the target's sensor saw through:
-   *  closer to it, along its ray, than the nearest return in that direction by more
-   *  than the margin. A wrong pose puts surfaces where the target saw empty space; the
-   *  right one does not (0 when no FreeSpace is given). */
+  /** \brief Share of the samples in space the target's sensor saw through (closer
+   *  along its ray than the nearest return by more than the margin); 0 without a
+   *  FreeSpace. */
   double free_space_violation = 0.0;
-  /** \brief The same the other way: the share of target samples in space the source's
-   *  sensor saw through (filled by the caller, which has the source's FreeSpace). */
+  /** \brief The same for target samples against the source's sensor (set by the
+   *  caller). */
   double reverse_free_space_violation = 0.0;
-  /** \brief How well the matched samples pin the translation down in every direction:
-   *  the smallest eigenvalue of sum w n n^T over the inliers with a normal, over the
-   *  total weight, in [0, 1/3]. A match of the ground alone, or of walls of one
-   *  direction, leaves a direction free and scores near 0 (the degeneracy test of ICP);
-   *  ground and walls of two directions score a sizeable share of the inliers. 0
-   *  without normals. */
+  /** \brief How well the matches pin the translation in every direction: the smallest
+   *  eigenvalue of sum w n n^T over the inliers with a normal, over the total weight,
+   *  in [0, 1/3]; near 0 for the ground alone or walls of one direction, 0 without
+   *  normals. */
   double constraint = 0.0;
 };
 
 /** \brief What the target's sensor saw: per direction cell of the Driscoll-Healy grid
- *  of bandwidth B about the target's projection center (its sensor origin), the nearest
- *  return in the cell and its 8 neighbors; 0 marks a cell without returns (nothing is
- *  known there). */
+ *  of bandwidth B about its sensor origin, the nearest return in the cell and its 8
+ *  neighbors; 0 marks a cell without returns. */
 struct FreeSpace {
   int bandwidth = 0;
   std::vector<double> nearest; ///< 4 B^2 cells
@@ -53,24 +48,15 @@ struct FreeSpace {
 FreeSpace freeSpace(const Eigen::Matrix3Xd& points, int bandwidth, double margin,
                     int num_threads = 1);
 
-/** \brief Verifies the pose q_t = R q_s + t of \a samples (3 x m source points, e.g.
- *  voxelCentroids) against \a target. Deterministic for any \a num_threads. An empty
- *  sample set or index gives zeros. */
-PoseVerification verifyPose(const PointIndex& target, const Eigen::Matrix3Xd& samples,
-                            const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
-                            int num_threads = 1);
-
 /** \brief The weighted share of \a samples (3 x m, moved by q = R s + t into the frame
- *  of \a seen) that lie in space the sensor of \a seen saw through: closer along a
- *  ray than the nearest return around it, by more than seen.margin. 0 for an empty
- *  FreeSpace or sample set. */
+ *  of \a seen) closer along a ray than the nearest return around it by more than
+ *  seen.margin; 0 for an empty FreeSpace or sample set. */
 double freeSpaceViolation(const FreeSpace& seen, const Eigen::Matrix3Xd& samples,
                           const Eigen::VectorXd& weights, const Eigen::Matrix3d& R,
                           const Eigen::Vector3d& t, int num_threads = 1);
 
-/** \brief Per sample of \a samples (3 x m, moved by q = R s + t into the frame of
- *  \a seen): 1 when it lies in space the sensor of \a seen saw through (as
- *  freeSpaceViolation), else 0; all 0 for an empty FreeSpace. */
+/** \brief Per sample: 1 when it violates the free space of \a seen (as
+ *  freeSpaceViolation), else 0. */
 std::vector<double> sampleViolations(const FreeSpace& seen,
                                      const Eigen::Matrix3Xd& samples,
                                      const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
@@ -87,19 +73,19 @@ struct VerificationSamples {
  *  normal of a target point that still match (about 45 deg). */
 constexpr double kMinNormalCosine = 0.7;
 
-/** \brief Per sample of \a samples under the pose (R, t): max(1e-12, 1 - d^2 / r^2)
- *  when a target point lies within the index radius r at distance d (with an agreeing
- *  normal when both have normals, as verifyPose), else 0. Deterministic for any
- *  \a num_threads. */
+/** \brief Per sample under the pose (R, t): max(1e-12, 1 - d^2 / r^2) when a target
+ *  point lies within the index radius r at distance d (with an agreeing normal when
+ *  both have normals), else 0. Deterministic for any \a num_threads. */
 std::vector<double> sampleCloseness(const PointIndex& target,
                                     const VerificationSamples& samples,
                                     const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
                                     int num_threads = 1);
 
-/** \brief The same with a weight per sample (the shares are weighted sums over the
- *  total weight) and, when both the samples and the index have normals, only target
- *  points whose normal agrees with the sample's rotated one (kMinNormalCosine) count:
- *  surfaces seen from the same side match, a wall laid across another does not. */
+/** \brief Verifies the pose q_t = R q_s + t of \a samples against \a target. When both
+ *  have normals only target points whose normal agrees with the sample's rotated one
+ *  (kMinNormalCosine) count. An empty sample set or index gives zeros. Deterministic
+ *  for any \a num_threads. \throws InvalidArgument unless there is one weight (and
+ *  normal, if any) per sample. */
 PoseVerification verifyPose(const PointIndex& target,
                             const VerificationSamples& samples,
                             const Eigen::Matrix3d& R, const Eigen::Vector3d& t,

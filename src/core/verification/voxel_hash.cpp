@@ -45,11 +45,8 @@ std::uint32_t neighborBit(int dx, int dy, int dz)
   return std::uint32_t(1) << ((dx + 1) * 9 + (dy + 1) * 3 + (dz + 1));
 }
 
-/** \a keyed, whose indices increase and whose keys are below 2^\a bits, in increasing
- *  order of key and then index, as std::sort of the pairs would give: a
- *  least-significant-digit radix sort of the keys (stable, so equal keys keep their
- *  index order), about a fifth of std::sort's time on a LiDAR scan. Digits shared by
- *  every key are skipped. */
+/** Sorts \a keyed (increasing indices, keys below 2^\a bits) by key, then index, by a
+ *  stable LSD radix sort: a fifth of std::sort's time on a lidar scan. */
 void sortByKey(std::vector<std::pair<std::int64_t, Eigen::Index>>& keyed, int bits)
 {
   constexpr int kDigitBits = 11;
@@ -75,10 +72,9 @@ void sortByKey(std::vector<std::pair<std::int64_t, Eigen::Index>>& keyed, int bi
   }
 }
 
-/** Voxel keys (three 21-bit axis indices, x highest) rewritten as each axis's index
- * less its least over a set of keys, packed in as many bits as the axis's range needs,
- * in the same axis order: compress() keeps the order of the keys, expand() undoes it.
- */
+/** Voxel keys (three 21-bit axis indices, x highest) packed as each axis's index less
+ *  its least, in the bits its range needs: compress() keeps the keys' order, expand()
+ *  undoes it, and the radix sort needs fewer passes. */
 class CompactKeys {
 public:
   explicit CompactKeys(const std::vector<std::pair<std::int64_t, Eigen::Index>>& keyed)
@@ -142,8 +138,6 @@ VoxelGroups groupByVoxel(const Eigen::Matrix3Xd& points, double voxel_size)
     if (voxelKey(points.col(i), voxel_size, key))
       keyed.emplace_back(key, i);
   }
-  // Sorted on keys made compact (each axis's index less its least, in just the bits its
-  // range needs): the same order, in fewer radix passes.
   const CompactKeys compact(keyed);
   for (auto& k : keyed)
     k.first = compact.compress(k.first);
@@ -196,10 +190,9 @@ PointIndex::PointIndex(const Eigen::Matrix3Xd& points, double radius,
     if (normals.cols() != 0)
       normals_.col(static_cast<Eigen::Index>(k)) = normals.col(groups.order[k]);
   }
-  // Open addressing with linear probing, at most a quarter full: a look-up reads one
-  // slot or a few neighbors in memory (std::unordered_map chased a list node per
-  // look-up). Each cell with points marks itself in the 27 cells around it, so a query
-  // probes only the cells that hold points, and none when its own cell is absent.
+  // Open addressing with linear probing, at most a quarter full. Each cell with points
+  // marks itself in the 27 cells around it, so a query probes only those that hold
+  // points.
   slots_.assign(16, Cell{});
   slot_shift_ = 60;
   for (std::size_t g = 0; g < groups.size(); ++g) {
@@ -252,11 +245,6 @@ const PointIndex::Cell* PointIndex::find(std::int64_t key) const
   return &slots_[i];
 }
 
-double PointIndex::nearestSquaredDistance(const Eigen::Vector3d& q) const
-{
-  return nearestSquaredDistance(q, Eigen::Vector3d::Zero(), 0.0);
-}
-
 double PointIndex::nearestSquaredDistance(const Eigen::Vector3d& q,
                                           const Eigen::Vector3d& normal,
                                           double min_cosine) const
@@ -287,8 +275,7 @@ Eigen::Index PointIndex::nearest(const Eigen::Vector3d& q,
   double best = radius_ * radius_;
   Eigen::Index found = -1;
   // The own cell first, then the nearest slab and row first: near points bound the
-  // search early, and a slab or row beyond the bound is skipped whole. Only the cells
-  // its own cell marks as occupied are looked up.
+  // search early, and a slab or row beyond the bound is skipped whole.
   const Cell* own = find(key);
   if (own == nullptr)
     return -1; // no cell around q holds points

@@ -46,11 +46,9 @@ public:
    *  \param[in] normals optional unit normal per point (3 x n; zero: none) */
   PointIndex(const Eigen::Matrix3Xd& points, double radius,
              const Eigen::Matrix3Xd& normals = Eigen::Matrix3Xd());
-  /** \brief Squared distance from \a q to its nearest point if that lies within
-   *  radius(), else +infinity. */
-  double nearestSquaredDistance(const Eigen::Vector3d& q) const;
-  /** \brief The same among the points whose normal agrees with \a normal (dot product
-   *  >= \a min_cosine) or that have none; a zero \a normal accepts every point. */
+  /** \brief Squared distance from \a q to its nearest point within radius(), else
+   *  +infinity, among the points whose normal agrees with \a normal (dot product >=
+   *  \a min_cosine) or that have none; a zero \a normal accepts every point. */
   double nearestSquaredDistance(const Eigen::Vector3d& q, const Eigen::Vector3d& normal,
                                 double min_cosine) const;
   /** \brief Index of the nearest point within radius() to \a q among those whose
