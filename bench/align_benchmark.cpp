@@ -96,6 +96,19 @@ private:
   pid_t pid_ = -1;
 };
 
+/** \a phaser on \a source and \a target with \a params and \a threads threads,
+ *  intensity fused unless \a range_only. */
+void configure(pcl::PhaserRegistration<PointT, PointT>& phaser,
+               const Cloud::Ptr& source, const Cloud::Ptr& target, int threads,
+               const pcl::phaser::PhaserParameters& params, bool range_only)
+{
+  phaser.setUseIntensity(!range_only);
+  phaser.setParameters(params);
+  phaser.setNumberOfThreads(threads);
+  phaser.setInputSource(source);
+  phaser.setInputTarget(target);
+}
+
 /** Median (by total time) of \a reps aligns with \a params and \a threads threads;
  *  \a cached keeps the target model between. */
 Row measure(const Cloud::Ptr& source, const Cloud::Ptr& target, int threads,
@@ -104,11 +117,7 @@ Row measure(const Cloud::Ptr& source, const Cloud::Ptr& target, int threads,
 {
   std::vector<Row> rows;
   pcl::PhaserRegistration<PointT, PointT> phaser;
-  phaser.setUseIntensity(!range_only);
-  phaser.setParameters(params);
-  phaser.setNumberOfThreads(threads);
-  phaser.setInputSource(source);
-  phaser.setInputTarget(target);
+  configure(phaser, source, target, threads, params, range_only);
   Cloud out;
   // Warm-up: plans and tables (the first align of this configuration), and the target
   // cache when cached.
@@ -170,11 +179,7 @@ void firstInProcess(const Cloud::Ptr& source, const Cloud::Ptr& target, int thre
                     bool range_only)
 {
   pcl::PhaserRegistration<PointT, PointT> phaser;
-  phaser.setUseIntensity(!range_only);
-  phaser.setParameters(params);
-  phaser.setNumberOfThreads(threads);
-  phaser.setInputSource(source);
-  phaser.setInputTarget(target);
+  configure(phaser, source, target, threads, params, range_only);
   const Timed first = timedAlign(phaser);
   const Eigen::Matrix4d transformation = phaser.getResult().transformation;
   std::vector<Timed> fresh, cached;
@@ -322,17 +327,16 @@ int main(int argc, char** argv)
     for (bool cached : {false, true}) {
       const Row r = measure(source, target, threads, cached, reps, params, range_only);
       const pcl::phaser::PhaserResult& e = r.estimate;
-      const double staged = e.target_ms + e.sampling_ms + e.sht_ms + e.so3_ms +
-                            e.refinement_ms + e.translation_ms + e.orientation_ms +
-                            e.verification_ms;
-      std::printf(
-          "| %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s "
-          "| %d |\n",
-          threads, cached ? "cached" : "fresh", cell(r.total).c_str(),
-          cell(r.first).c_str(), cell(e.target_ms).c_str(), cell(e.sampling_ms).c_str(),
-          cell(e.sht_ms).c_str(), cell(e.so3_ms).c_str(), cell(e.refinement_ms).c_str(),
-          cell(e.translation_ms).c_str(), cell(e.orientation_ms).c_str(),
-          cell(e.verification_ms).c_str(), cell(r.total - staged).c_str(), e.passes);
+      const pcl::phaser::StageTimes& times = e.diagnostics.times;
+      std::printf("| %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s "
+                  "| %d |\n",
+                  threads, cached ? "cached" : "fresh", cell(r.total).c_str(),
+                  cell(r.first).c_str(), cell(times.target).c_str(),
+                  cell(times.sampling).c_str(), cell(times.sht).c_str(),
+                  cell(times.so3).c_str(), cell(times.refinement).c_str(),
+                  cell(times.translation).c_str(), cell(times.orientation).c_str(),
+                  cell(times.verification).c_str(),
+                  cell(r.total - times.total()).c_str(), e.diagnostics.passes);
       std::fflush(stdout);
     }
   return 0;

@@ -145,8 +145,9 @@ void registerAndPrint(int seed, int b, const Eigen::Matrix4d& truth,
   const Eigen::Vector3d e = omega.angle() * omega.axis();
   const Eigen::Vector3d nu = truth.topRightCorner<3, 1>() - T.topRightCorner<3, 1>();
   std::printf("%d,%d,%d,%.3f,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e", seed, b,
-              phaser.hasConverged() ? 1 : 0, phaser.getResult().translation_score,
-              e.x(), e.y(), e.z(), nu.x(), nu.y(), nu.z());
+              phaser.hasConverged() ? 1 : 0,
+              phaser.getResult().diagnostics.translation_score, e.x(), e.y(), e.z(),
+              nu.x(), nu.y(), nu.z());
   printMatrix(phaser.getRotationUncertainty().tangentCovariance());
   printMatrix(phaser.getResult().translation_covariance);
   const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();

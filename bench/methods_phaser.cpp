@@ -13,16 +13,16 @@ namespace bench {
 
 namespace {
 
-VerificationFigures verificationOf(const PhaserResult& r)
+VerificationFigures verificationOf(const PhaserDiagnostics& diagnostics)
 {
   VerificationFigures v;
-  v.inliers = r.inlier_fraction;
-  v.free_space = r.free_space_violation;
-  v.reverse_free_space = r.reverse_free_space_violation;
-  v.constraint = r.constraint;
-  v.rank = r.verification_rank;
-  v.runner_up_rank = r.runner_up_rank;
-  v.runner_up_error = r.runner_up_error;
+  v.inliers = diagnostics.verification.inlier_fraction;
+  v.free_space = diagnostics.verification.free_space_violation;
+  v.reverse_free_space = diagnostics.verification.reverse_free_space_violation;
+  v.constraint = diagnostics.verification.constraint;
+  v.rank = diagnostics.verification.rank;
+  v.runner_up_rank = diagnostics.runner_up_rank;
+  v.runner_up_error = diagnostics.runner_up_error;
   return v;
 }
 
@@ -51,9 +51,10 @@ MethodResult align(const typename pcl::PointCloud<PointP>::ConstPtr& source,
   result.ms = setup_ms + elapsedMs(start);
   result.transformation = phaser.getFinalTransformation().template cast<double>();
   result.converged = phaser.hasConverged();
-  result.score = phaser.getResult().translation_score;
-  result.overlap = phaser.getResult().normalized_overlap;
-  result.verification = verificationOf(phaser.getResult());
+  const PhaserDiagnostics& diagnostics = phaser.getResult().diagnostics;
+  result.score = diagnostics.translation_score;
+  result.overlap = diagnostics.normalized_overlap;
+  result.verification = verificationOf(diagnostics);
   if (result.converged) {
     result.covariance = phaser.getCovariance();
     result.has_covariance = true;

@@ -287,23 +287,22 @@ BinSummary summarize(const std::vector<RevisitTrial>& trials, const std::string&
 void writeTable(std::ostream& out, const std::vector<RevisitTrial>& trials,
                 const std::vector<std::string>& methods, double fft_ms)
 {
-  out << "| method | distance | n | success @2 m | success @0.6 m | median RRE (deg) "
-         "| median RTE (m) | median time (ms) | median time (FFT128) | false accepts "
-         "(converged failures) | converged successes |\n"
-         "|---|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const std::string& method : methods)
-    for (const Bin& bin : bins()) {
-      const BinSummary s = summarize(trials, method, bin);
-      out << "| " << method << " | " << bin.label << " | " << s.n << " | "
-          << formatValue("%.0f %%", s.n ? 100.0 * s.ok_a / s.n : NAN) << " | "
-          << formatValue("%.0f %%", s.n ? 100.0 * s.ok_b / s.n : NAN) << " | "
-          << formatValue("%.2f", s.median_rre) << " | "
-          << formatValue("%.3f", s.median_rte) << " | "
-          << formatValue("%.0f", s.median_ms) << " | "
-          << formatValue("%.1f", s.median_ms / fft_ms) << " | "
-          << countOf(s.converged_failures, s.n - s.ok_a) << " | "
-          << countOf(s.converged_successes, s.ok_a) << " |\n";
-    }
+  writeRows(out,
+            {"n", "success @2 m", "success @0.6 m", "median RRE (deg)",
+             "median RTE (m)", "median time (ms)", "median time (FFT128)",
+             "false accepts (converged failures)", "converged successes"},
+            methods, [&](const std::string& method, const Bin& bin) {
+              const BinSummary s = summarize(trials, method, bin);
+              out << "| " << method << " | " << bin.label << " | " << s.n << " | "
+                  << formatValue("%.0f %%", s.n ? 100.0 * s.ok_a / s.n : NAN) << " | "
+                  << formatValue("%.0f %%", s.n ? 100.0 * s.ok_b / s.n : NAN) << " | "
+                  << formatValue("%.2f", s.median_rre) << " | "
+                  << formatValue("%.3f", s.median_rte) << " | "
+                  << formatValue("%.0f", s.median_ms) << " | "
+                  << formatValue("%.1f", s.median_ms / fft_ms) << " | "
+                  << countOf(s.converged_failures, s.n - s.ok_a) << " | "
+                  << countOf(s.converged_successes, s.ok_a) << " |\n";
+            });
 }
 
 /** DIR/revisits_success.{dat,gp} and, with gnuplot, the PNG; returns the PNG or "". */

@@ -85,26 +85,30 @@ NeesSummary summarizeNees(const std::vector<RevisitTrial>& trials,
 void writeNeesTable(std::ostream& out, const std::vector<RevisitTrial>& trials,
                     const std::vector<std::string>& methods)
 {
-  out << "\n| method | distance | converged with covariance | mean NEES (6) | median "
-         "NEES | inside 95 % (6-D, 12.59) | inside 95 % rot. / trans. (3-D, 7.81) | "
-         "mean NEES rot. / trans. (3) | RMS RRE (deg) | RMS RTE (m) | median "
-         "sigma_rot (deg) | median sigma_trans (m) |\n"
-         "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const std::string& method : methods)
-    for (const Bin& bin : bins()) {
-      const NeesSummary s = summarizeNees(trials, method, bin);
-      if (s.n == 0)
-        continue;
-      const auto share = [&](int k) { return formatValue("%.1f %%", 100.0 * k / s.n); };
-      out << "| " << method << " | " << bin.label << " | " << s.n << " | "
-          << formatValue("%.2f", s.mean) << " | " << formatValue("%.2f", s.median)
-          << " | " << share(s.inside) << " | " << share(s.inside_rot) << " / "
-          << share(s.inside_trans) << " | " << formatValue("%.2f", s.mean_rot) << " / "
-          << formatValue("%.2f", s.mean_trans) << " | "
-          << formatValue("%.3f", s.rms_rre) << " | " << formatValue("%.3f", s.rms_rte)
-          << " | " << formatValue("%.3f", s.sigma_rot) << " | "
-          << formatValue("%.3f", s.sigma_trans) << " |\n";
-    }
+  out << '\n';
+  writeRows(out,
+            {"converged with covariance", "mean NEES (6)", "median NEES",
+             "inside 95 % (6-D, 12.59)", "inside 95 % rot. / trans. (3-D, 7.81)",
+             "mean NEES rot. / trans. (3)", "RMS RRE (deg)", "RMS RTE (m)",
+             "median sigma_rot (deg)", "median sigma_trans (m)"},
+            methods, [&](const std::string& method, const Bin& bin) {
+              const NeesSummary s = summarizeNees(trials, method, bin);
+              if (s.n == 0)
+                return;
+              const auto share = [&](int k) {
+                return formatValue("%.1f %%", 100.0 * k / s.n);
+              };
+              out << "| " << method << " | " << bin.label << " | " << s.n << " | "
+                  << formatValue("%.2f", s.mean) << " | "
+                  << formatValue("%.2f", s.median) << " | " << share(s.inside) << " | "
+                  << share(s.inside_rot) << " / " << share(s.inside_trans) << " | "
+                  << formatValue("%.2f", s.mean_rot) << " / "
+                  << formatValue("%.2f", s.mean_trans) << " | "
+                  << formatValue("%.3f", s.rms_rre) << " | "
+                  << formatValue("%.3f", s.rms_rte) << " | "
+                  << formatValue("%.3f", s.sigma_rot) << " | "
+                  << formatValue("%.3f", s.sigma_trans) << " |\n";
+            });
 }
 
 /** The reference poses of \a pairs corrected for the drift of -reference-drift; false

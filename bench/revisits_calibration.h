@@ -48,6 +48,24 @@ struct Bin {
  */
 const std::vector<Bin>& bins();
 
+/** \brief Writes a Markdown table: the header "| method | distance | " and \a columns,
+ *  then \a row(method, bin) for every method and distance bin, in that order. */
+template <typename Row>
+void writeRows(std::ostream& out, const std::vector<const char*>& columns,
+               const std::vector<std::string>& methods, const Row& row)
+{
+  out << "| method | distance |";
+  for (const char* column : columns)
+    out << ' ' << column << " |";
+  out << "\n|---|---|";
+  for (std::size_t k = 0; k < columns.size(); ++k)
+    out << "---|";
+  out << '\n';
+  for (const std::string& method : methods)
+    for (const Bin& bin : bins())
+      row(method, bin);
+}
+
 /** \brief The covariance's calibration per method (those with one) and distance bin:
  *  converged trials, mean and median 6-D NEES, the shares inside the 95 % ellipsoids
  *  (6-D, and each block in 3-D), mean NEES per block, RMS errors, median sigmas. */

@@ -157,19 +157,22 @@ Record alignedRecord(const Pair& pair, std::size_t pairs, const PhaserResult& re
   r["transformation"] = nested<4, 4>(result.transformation);
   r["converged"] = result.converged;
   r["covariance"] = nested<6, 6>(covariance);
-  r["inlier_fraction"] = result.inlier_fraction;
-  r["verification_score"] = result.verification_score;
-  r["free_space_violation"] = result.free_space_violation;
-  r["reverse_free_space_violation"] = result.reverse_free_space_violation;
-  r["constraint"] = result.constraint;
-  r["verification_rank"] = result.verification_rank;
-  r["runner_up_rank"] = result.runner_up_rank; // -infinity (none) is written as null
-  r["runner_up_error"] = result.runner_up_error;
-  r["rotation_score"] = result.rotation_score;
-  r["translation_score"] = result.translation_score;
-  r["normalized_overlap"] = result.normalized_overlap;
+  const PhaserDiagnostics& diagnostics = result.diagnostics;
+  r["inlier_fraction"] = diagnostics.verification.inlier_fraction;
+  r["verification_score"] = diagnostics.verification.score;
+  r["free_space_violation"] = diagnostics.verification.free_space_violation;
+  r["reverse_free_space_violation"] =
+      diagnostics.verification.reverse_free_space_violation;
+  r["constraint"] = diagnostics.verification.constraint;
+  r["verification_rank"] = diagnostics.verification.rank;
+  r["runner_up_rank"] =
+      diagnostics.runner_up_rank; // -infinity (none) is written as null
+  r["runner_up_error"] = diagnostics.runner_up_error;
+  r["rotation_score"] = diagnostics.rotation_score;
+  r["translation_score"] = diagnostics.translation_score;
+  r["normalized_overlap"] = diagnostics.normalized_overlap;
   r["time_ms"] = time_ms;
-  r["target_ms"] = result.target_ms;
+  r["target_ms"] = diagnostics.times.target;
   return r;
 }
 

@@ -247,7 +247,9 @@ void printStage(const char* title, const Stage& s)
 
 void printReport(const Result& res)
 {
-  const pcl::phaser::PhaserResult& e = res.estimate;
+  const pcl::phaser::PhaserDiagnostics& diagnostics = res.estimate.diagnostics;
+  const pcl::phaser::Verification& verification = diagnostics.verification;
+  const pcl::phaser::StageTimes& times = diagnostics.times;
   printStage("PHASER", res.global);
   print_info(
       "    rotation score %.4f, translation score %.4f, passes %d\n"
@@ -256,11 +258,13 @@ void printReport(const Result& res)
       "    stages (ms): target %.1f, sampling %.1f, sht %.1f, so3 %.1f, "
       "refinement %.1f, translation %.1f, orientation %.1f, verification %.1f; "
       "total %.1f\n",
-      e.rotation_score, e.translation_score, e.passes, e.inlier_fraction,
-      e.free_space_violation, e.reverse_free_space_violation, e.constraint,
-      e.verification_samples, e.verified ? "verified" : "NOT verified", e.target_ms,
-      e.sampling_ms, e.sht_ms, e.so3_ms, e.refinement_ms, e.translation_ms,
-      e.orientation_ms, e.verification_ms, res.global.time_ms);
+      diagnostics.rotation_score, diagnostics.translation_score, diagnostics.passes,
+      verification.inlier_fraction, verification.free_space_violation,
+      verification.reverse_free_space_violation, verification.constraint,
+      diagnostics.verification_samples,
+      diagnostics.verified ? "verified" : "NOT verified", times.target, times.sampling,
+      times.sht, times.so3, times.refinement, times.translation, times.orientation,
+      times.verification, res.global.time_ms);
   if (res.icp.ran)
     printStage("After ICP", res.icp);
 }
@@ -269,26 +273,27 @@ std::string toJson(const Result& res, const Options& opt, int code, double total
 {
   json::Object o;
   if (res.global.ran) {
-    const pcl::phaser::PhaserResult& e = res.estimate;
+    const pcl::phaser::PhaserDiagnostics& diagnostics = res.estimate.diagnostics;
+    const pcl::phaser::Verification& verification = diagnostics.verification;
     o = json::stage(res.global);
     json::Object stages;
-    stages.add("target", json::number(e.target_ms))
-        .add("sampling", json::number(e.sampling_ms))
-        .add("sht", json::number(e.sht_ms))
-        .add("so3", json::number(e.so3_ms))
-        .add("refinement", json::number(e.refinement_ms))
-        .add("translation", json::number(e.translation_ms))
-        .add("orientation", json::number(e.orientation_ms))
-        .add("verification", json::number(e.verification_ms));
-    o.add("rotation_score", json::number(e.rotation_score))
-        .add("translation_score", json::number(e.translation_score))
-        .add("inlier_fraction", json::number(e.inlier_fraction))
-        .add("free_space_violation", json::number(e.free_space_violation))
+    stages.add("target", json::number(diagnostics.times.target))
+        .add("sampling", json::number(diagnostics.times.sampling))
+        .add("sht", json::number(diagnostics.times.sht))
+        .add("so3", json::number(diagnostics.times.so3))
+        .add("refinement", json::number(diagnostics.times.refinement))
+        .add("translation", json::number(diagnostics.times.translation))
+        .add("orientation", json::number(diagnostics.times.orientation))
+        .add("verification", json::number(diagnostics.times.verification));
+    o.add("rotation_score", json::number(diagnostics.rotation_score))
+        .add("translation_score", json::number(diagnostics.translation_score))
+        .add("inlier_fraction", json::number(verification.inlier_fraction))
+        .add("free_space_violation", json::number(verification.free_space_violation))
         .add("reverse_free_space_violation",
-             json::number(e.reverse_free_space_violation))
-        .add("constraint", json::number(e.constraint))
-        .add("verified", json::boolean(e.verified))
-        .add("passes", std::to_string(e.passes))
+             json::number(verification.reverse_free_space_violation))
+        .add("constraint", json::number(verification.constraint))
+        .add("verified", json::boolean(diagnostics.verified))
+        .add("passes", std::to_string(diagnostics.passes))
         .add("stages_ms", stages.str())
         .add("source_points", std::to_string(res.source_points))
         .add("target_points", std::to_string(res.target_points));

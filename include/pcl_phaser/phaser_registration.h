@@ -170,9 +170,9 @@ public:
            phaser::availableChannels<PointTarget>();
   }
 
-  /** \brief Everything the last align() found: the transformation, whether it
-   *  converged, the center used, scores, hypotheses (in the caller's frames),
-   *  verification figures, the translation covariance and the time of each stage. */
+  /** \brief What the last align() found: the transformation, whether it converged,
+   *  the center used, the covariance inputs, and in diagnostics its scores,
+   *  verification, hypotheses (in the caller's frames) and stage times. */
   const pcl::phaser::PhaserResult& getResult() const { return result_; }
 
   /** \brief Bingham distribution of the rotation of the last align()
@@ -182,9 +182,7 @@ public:
   /** \brief 6x6 covariance of the pose error of the last align(), ordered (rotation
    *  vector [rad], translation [m]) for omega = Log(R_true R_est^T) and nu = t_true -
    *  t_est (pcl::phaser::poseCovariance): from the final pose's own point-to-plane fit,
-   *  calibrated on real revisits (on held-out ones 91 % of the errors lie inside its
-   *  95 % ellipsoid, doc/benchmarks.md "Covariance calibration on revisits"); zero
-   *  unless hasConverged(). */
+   *  calibrated on real revisits; zero unless hasConverged(). */
   Eigen::Matrix<double, 6, 6> getCovariance() const;
 
   /** \brief Mean squared distance from the transformed source to its nearest target

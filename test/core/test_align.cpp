@@ -56,7 +56,7 @@ void expectFailure(const PhaserResult& r, const Eigen::Matrix4d& guess)
   EXPECT_FALSE(r.error.empty());
   EXPECT_FALSE(r.converged);
   EXPECT_TRUE(r.transformation == guess);
-  EXPECT_TRUE(r.hypotheses.empty());
+  EXPECT_TRUE(r.diagnostics.hypotheses.empty());
 }
 
 TEST(EngineAlign, BadInputGivesAReason)
@@ -119,8 +119,9 @@ TEST(EngineAlign, ComposesTheGuessInTheCallersFrames)
   ASSERT_TRUE(r.error.empty()) << r.error;
   EXPECT_EQ(r.projection_center, pcl::phaser::ProjectionCenter::Centroid);
   EXPECT_LT((r.transformation - T).norm(), 0.5);
-  ASSERT_FALSE(r.hypotheses.empty());
-  EXPECT_TRUE(r.hypotheses[r.chosen_hypothesis].transformation.allFinite());
+  const std::vector<pcl::phaser::Hypothesis>& hypotheses = r.diagnostics.hypotheses;
+  ASSERT_FALSE(hypotheses.empty());
+  EXPECT_TRUE(hypotheses[r.chosen_hypothesis].transformation.allFinite());
 }
 
 TEST(EngineAlign, OneTargetServesConcurrentCalls)
@@ -140,7 +141,9 @@ TEST(EngineAlign, OneTargetServesConcurrentCalls)
   ASSERT_TRUE(results[1].error.empty()) << results[1].error;
   EXPECT_TRUE(results[0].transformation == results[1].transformation);
   // Prepared once: by whichever call came first.
-  EXPECT_EQ((results[0].target_ms > 0.0) + (results[1].target_ms > 0.0), 1);
+  EXPECT_EQ((results[0].diagnostics.times.target > 0.0) +
+                (results[1].diagnostics.times.target > 0.0),
+            1);
 }
 
 } // namespace

@@ -75,13 +75,15 @@ void expectIdentical(const PhaserResult& a, const PhaserResult& b)
   ASSERT_TRUE(a.error.empty()) << a.error;
   ASSERT_TRUE(b.error.empty()) << b.error;
   EXPECT_TRUE(a.transformation == b.transformation);
-  EXPECT_EQ(a.rotation_score, b.rotation_score);
-  EXPECT_EQ(a.translation_score, b.translation_score);
-  EXPECT_EQ(a.verification_rank, b.verification_rank);
+  EXPECT_EQ(a.diagnostics.rotation_score, b.diagnostics.rotation_score);
+  EXPECT_EQ(a.diagnostics.translation_score, b.diagnostics.translation_score);
+  EXPECT_EQ(a.diagnostics.verification.rank, b.diagnostics.verification.rank);
   EXPECT_EQ(a.converged, b.converged);
-  ASSERT_EQ(a.hypotheses.size(), b.hypotheses.size());
-  for (std::size_t k = 0; k < a.hypotheses.size(); ++k)
-    EXPECT_TRUE(a.hypotheses[k].transformation == b.hypotheses[k].transformation);
+  const auto& ha = a.diagnostics.hypotheses;
+  const auto& hb = b.diagnostics.hypotheses;
+  ASSERT_EQ(ha.size(), hb.size());
+  for (std::size_t k = 0; k < ha.size(); ++k)
+    EXPECT_TRUE(ha[k].transformation == hb[k].transformation);
 }
 
 /** Under ctest each test is its own process: the first align below is the first of

@@ -94,7 +94,7 @@ void expectRightAndConverged(pcl::PhaserRegistration<PointT, PointT>& phaser,
   std::printf("  RRE %.3f deg, RTE %.3f m, converged %d, chosen hypothesis %d of %zu\n",
               rreDeg(G, T), rte(G, T), phaser.hasConverged() ? 1 : 0,
               phaser.getResult().chosen_hypothesis,
-              phaser.getResult().hypotheses.size());
+              phaser.getResult().diagnostics.hypotheses.size());
   EXPECT_LT(rreDeg(G, T), 2.0);
   EXPECT_LT(rte(G, T), 0.3);
   EXPECT_TRUE(phaser.hasConverged());
@@ -237,9 +237,10 @@ Eigen::Matrix4d alignAboutCentroids(const CloudXYZ::ConstPtr& source,
   CloudXYZ out;
   phaser.align(out);
   const pcl::phaser::PhaserResult& e = phaser.getResult();
-  std::printf("  global: score %.1f, inliers %.3f, constraint %.3f, samples %d\n",
-              e.translation_score, e.inlier_fraction, e.constraint,
-              e.verification_samples);
+  std::printf(
+      "  global: score %.1f, inliers %.3f, constraint %.3f, samples %d\n",
+      e.diagnostics.translation_score, e.diagnostics.verification.inlier_fraction,
+      e.diagnostics.verification.constraint, e.diagnostics.verification_samples);
   converged = phaser.hasConverged();
   return phaser.getFinalTransformation().cast<double>();
 }
@@ -274,7 +275,7 @@ TEST(RealPairs, Hdl32AgainstReference)
     const Eigen::Matrix4d G = phaser.getFinalTransformation().cast<double>();
     std::printf("  global: RRE %.3f deg, RTE %.4f m, score %.1f\n",
                 rreDeg(G, reference), rte(G, reference),
-                phaser.getResult().translation_score);
+                phaser.getResult().diagnostics.translation_score);
     EXPECT_LT(rreDeg(G, reference), 1.0);
     EXPECT_LT(rte(G, reference), 0.3);
   }
@@ -371,9 +372,10 @@ TEST(RealScans, SecondRotationHypothesisRescuesAMirrorPeak)
     error[k] = rreDeg(phaser.getFinalTransformation().cast<double>(), T);
     if (k == 1) {
       const pcl::phaser::PhaserResult& r = phaser.getResult();
-      ASSERT_GE(r.hypotheses.size(), 2u);
+      const std::vector<pcl::phaser::Hypothesis>& hypotheses = r.diagnostics.hypotheses;
+      ASSERT_GE(hypotheses.size(), 2u);
       ASSERT_GE(r.chosen_hypothesis, 0);
-      ASSERT_LT(r.chosen_hypothesis, static_cast<int>(r.hypotheses.size()));
+      ASSERT_LT(r.chosen_hypothesis, static_cast<int>(hypotheses.size()));
       // Hypotheses are in the caller's frames: the estimate was refined from the
       // chosen one, whose residual rotation the later passes search within 20 deg
       // (kResidualTilt). (Another hypothesis may be nearer: when none meets the
@@ -381,10 +383,10 @@ TEST(RealScans, SecondRotationHypothesisRescuesAMirrorPeak)
       // polished on their own.)
       const Eigen::Matrix4d final_T = phaser.getFinalTransformation().cast<double>();
       const double chosen_angle =
-          rreDeg(r.hypotheses[r.chosen_hypothesis].transformation, final_T);
-      for (std::size_t h = 0; h < r.hypotheses.size(); ++h)
+          rreDeg(hypotheses[r.chosen_hypothesis].transformation, final_T);
+      for (std::size_t h = 0; h < hypotheses.size(); ++h)
         std::printf("  hypothesis %zu: %.2f deg from the estimate\n", h,
-                    rreDeg(r.hypotheses[h].transformation, final_T));
+                    rreDeg(hypotheses[h].transformation, final_T));
       EXPECT_LT(chosen_angle, 20.0);
     }
   }

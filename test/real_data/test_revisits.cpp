@@ -105,14 +105,16 @@ Eigen::Matrix4d align(const Cloud::ConstPtr& source, const Cloud::ConstPtr& targ
   Cloud aligned;
   phaser.align(aligned);
   converged = phaser.hasConverged();
+  const pcl::phaser::PhaserDiagnostics& diagnostics = phaser.getResult().diagnostics;
   if (why)
-    *why = "inlier fraction " + std::to_string(phaser.getResult().inlier_fraction) +
+    *why = "inlier fraction " +
+           std::to_string(diagnostics.verification.inlier_fraction) +
            ", free-space violations " +
-           std::to_string(phaser.getResult().free_space_violation) + " / " +
-           std::to_string(phaser.getResult().reverse_free_space_violation) + ", rank " +
-           std::to_string(phaser.getResult().verification_rank) + " (runner-up " +
-           std::to_string(phaser.getResult().runner_up_rank) + ", difference error " +
-           std::to_string(phaser.getResult().runner_up_error) + ")";
+           std::to_string(diagnostics.verification.free_space_violation) + " / " +
+           std::to_string(diagnostics.verification.reverse_free_space_violation) +
+           ", rank " + std::to_string(diagnostics.verification.rank) + " (runner-up " +
+           std::to_string(diagnostics.runner_up_rank) + ", difference error " +
+           std::to_string(diagnostics.runner_up_error) + ")";
   return phaser.getFinalTransformation().cast<double>();
 }
 

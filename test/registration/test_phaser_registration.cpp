@@ -62,8 +62,8 @@ TEST(PhaserRegistration, ConvergenceMeansAVerifiedPose)
   pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
   ASSERT_TRUE(alignOnce(phaser, source, target));
   CloudXYZ out;
-  const pcl::phaser::PhaserResult e = phaser.getResult();
-  EXPECT_TRUE(e.verified);
+  EXPECT_TRUE(phaser.getResult().diagnostics.verified);
+  const pcl::phaser::Verification e = phaser.getResult().diagnostics.verification;
   EXPECT_GT(e.inlier_fraction, 0.5); // the same room seen again
   EXPECT_GT(e.constraint, 0.05);     // floor and walls of two directions
   EXPECT_LE(e.free_space_violation,
@@ -145,8 +145,8 @@ TEST(PhaserRegistration, VolumetricNoiseIsVerifiedOnBoundedSamples)
   phaser.align(out);
   const pcl::phaser::PhaserResult& r = phaser.getResult();
   EXPECT_TRUE(r.error.empty()) << r.error;
-  EXPECT_GT(r.verification_samples, 8000);
-  EXPECT_LE(r.verification_samples, 16384);
+  EXPECT_GT(r.diagnostics.verification_samples, 8000);
+  EXPECT_LE(r.diagnostics.verification_samples, 16384);
   if (phaser.hasConverged()) {
     const Eigen::Matrix4f G = phaser.getFinalTransformation();
     const Eigen::AngleAxisf d(
@@ -312,13 +312,14 @@ TEST(PhaserRegistration, CachedTargetGivesIdenticalResults)
   CloudXYZ out;
   phaser.align(out);
   const Eigen::Matrix4f first = phaser.getFinalTransformation();
-  EXPECT_GT(phaser.getResult().target_ms, 0.0);
+  EXPECT_GT(phaser.getResult().diagnostics.times.target, 0.0);
   phaser.align(out);
-  EXPECT_EQ(phaser.getResult().target_ms, 0.0); // target spectra came from the cache
+  EXPECT_EQ(phaser.getResult().diagnostics.times.target,
+            0.0); // target spectra came from the cache
   EXPECT_TRUE(first == phaser.getFinalTransformation());
   phaser.setInputTarget(target); // invalidates
   phaser.align(out);
-  EXPECT_GT(phaser.getResult().target_ms, 0.0);
+  EXPECT_GT(phaser.getResult().diagnostics.times.target, 0.0);
   EXPECT_TRUE(first == phaser.getFinalTransformation());
 }
 

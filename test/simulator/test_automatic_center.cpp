@@ -51,7 +51,7 @@ TEST(AutomaticCenter, SimulatedScanPairUsesTheSensorOriginAndTheCache)
       2.0);
   const Eigen::Matrix4f first = phaser.getFinalTransformation();
   phaser.align(out); // same choice: the cached target model is reused
-  EXPECT_EQ(phaser.getResult().target_ms, 0.0);
+  EXPECT_EQ(phaser.getResult().diagnostics.times.target, 0.0);
   EXPECT_EQ(phaser.getFinalTransformation(), first);
 
   // The target scan itself, yawed by 90 deg and moved 100 m from its origin: it no
@@ -67,7 +67,7 @@ TEST(AutomaticCenter, SimulatedScanPairUsesTheSensorOriginAndTheCache)
   phaser.align(out);
   ASSERT_TRUE(phaser.hasConverged());
   EXPECT_EQ(phaser.getResult().projection_center, Center::Centroid);
-  EXPECT_GT(phaser.getResult().target_ms, 0.0);
+  EXPECT_GT(phaser.getResult().diagnostics.times.target, 0.0);
   const Eigen::Matrix4d truth = away.inverse();
   const Eigen::Matrix4d estimate = phaser.getFinalTransformation().cast<double>();
   EXPECT_LT(rreDeg(estimate, truth), 2.0);

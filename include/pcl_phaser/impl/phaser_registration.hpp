@@ -128,6 +128,7 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
                                                getFusedChannels(), source.channels);
   result_ = pcl::phaser::align(*target_model_, source, guess.template cast<double>(),
                                params_);
+  const pcl::phaser::PhaserDiagnostics& diagnostics = result_.diagnostics;
   if (!result_.error.empty())
     PCL_ERROR("[pcl::%s::computeTransformation] %s\n", getClassName().c_str(),
               result_.error.c_str());
@@ -135,9 +136,10 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
     PCL_DEBUG("[pcl::%s::computeTransformation] not verified: inlier fraction %g, "
               "free-space violations %g / %g (source / target samples), %d samples, "
               "peak score %g: not converged\n",
-              getClassName().c_str(), result_.inlier_fraction,
-              result_.free_space_violation, result_.reverse_free_space_violation,
-              result_.verification_samples, result_.translation_score);
+              getClassName().c_str(), diagnostics.verification.inlier_fraction,
+              diagnostics.verification.free_space_violation,
+              diagnostics.verification.reverse_free_space_violation,
+              diagnostics.verification_samples, diagnostics.translation_score);
   converged_ = result_.converged;
   final_transformation_ = transformation_ = result_.transformation.cast<Scalar>();
   phaser::detail::transformWhole(*input_, output, final_transformation_);

@@ -2,9 +2,8 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * The engine's entry point in the caller's frames: centering, the projection-center
- * choice, the target cache, guess composition and the convergence decision around the
- * stages of pipeline.cpp.
+ * The engine's entry point in the caller's frames: input checks, the projection
+ * center, the target cache, guess composition and the convergence decision.
  */
 #include "pipeline/pipeline_internal.h"
 #include "pipeline/projection_center.h"
@@ -86,16 +85,17 @@ std::string checkInputs(const Target& target, const SourceCloud& source,
   return problem;
 }
 
-/** The parameters a target model depends on are those it was prepared with. */
-bool sameModel(const StageParameters& m, const StageParameters& p)
+/** Whether a model prepared with \a prepared serves \a wanted. */
+bool sameModel(const StageParameters& prepared, const StageParameters& wanted)
 {
-  return m.bandwidth == p.bandwidth && m.spatial_grid_size == p.spatial_grid_size &&
-         m.voxel_size == p.voxel_size && m.passes == p.passes &&
-         m.fusion_levels == p.fusion_levels &&
-         m.normalized_refinement == p.normalized_refinement &&
-         m.orientation_candidates == p.orientation_candidates &&
-         m.orientation_bandwidth == p.orientation_bandwidth &&
-         m.sensor_centered == p.sensor_centered;
+  return prepared.bandwidth == wanted.bandwidth &&
+         prepared.spatial_grid_size == wanted.spatial_grid_size &&
+         prepared.voxel_size == wanted.voxel_size && prepared.passes == wanted.passes &&
+         prepared.fusion_levels == wanted.fusion_levels &&
+         prepared.normalized_refinement == wanted.normalized_refinement &&
+         prepared.orientation_candidates == wanted.orientation_candidates &&
+         prepared.orientation_bandwidth == wanted.orientation_bandwidth &&
+         prepared.sensor_centered == wanted.sensor_centered;
 }
 
 /** The center both clouds are projected about; \a moved is the source moved by the
@@ -119,22 +119,23 @@ ProjectionCenter chooseCenter(const Target& target, const Eigen::Matrix3Xd& move
              : ProjectionCenter::Centroid;
 }
 
-/** The target model for \a center and \a p, from the cache or prepared (then its
- *  preparation time goes to \a target_ms), and its projection center. */
+/** The target model for \a center and \a params, from the cache or prepared (its
+ *  time into \a target_ms), and its projection center into \a offset. */
 std::shared_ptr<const TargetModel>
-targetModel(const Target& target, ProjectionCenter center, const StageParameters& p,
-            Eigen::Vector3d& offset, double& target_ms)
+targetModel(const Target& target, ProjectionCenter center,
+            const StageParameters& params, Eigen::Vector3d& offset, double& target_ms)
 {
   auto& cache = TargetAccess::cache(target);
   std::lock_guard<std::mutex> lock(cache.mutex);
-  if (!cache.model || cache.center != center || !sameModel(cache.model->params, p)) {
+  if (!cache.model || cache.center != center ||
+      !sameModel(cache.model->params, params)) {
     cache.model.reset();
     Eigen::Matrix3Xd points = target.points();
     cache.offset = center == ProjectionCenter::Centroid
                        ? Eigen::Vector3d(points.rowwise().mean())
                        : Eigen::Vector3d::Zero();
     points.colwise() -= cache.offset;
-    cache.model = detail::prepareTarget(points, p, TargetAccess::channels(target));
+    cache.model = detail::prepareTarget(points, params, TargetAccess::channels(target));
     cache.center = center;
     target_ms = cache.model->preparation_ms;
   }
@@ -173,16 +174,17 @@ Eigen::Matrix<double, 6, 6> aboutTranslation(const Eigen::Matrix<double, 6, 6>& 
   return A * cov * A.transpose();
 }
 
-/** Converged means verified: the final pose puts enough source samples on the target
- *  and, about sensor origins, few in space the target saw through. About centroids (no
- *  free-space test) a distinct translation peak is also required; scans taken meters
- *  apart give wider peaks, so a clear overlap lets half the score suffice. */
-bool converged(const PhaserResult& r, const PhaserParameters& p)
+/** Converged means verified and, about centroids (no free-space test), a distinct
+ *  translation peak: scans taken meters apart give wider peaks, so a clear overlap
+ *  lets half the score suffice. */
+bool converged(const PhaserResult& result, const PhaserParameters& params)
 {
-  const bool peak = r.translation_score >= p.min_peak_score ||
-                    (r.translation_score >= 0.5 * p.min_peak_score &&
-                     r.normalized_overlap >= p.min_normalized_overlap);
-  return r.verified && (r.projection_center == ProjectionCenter::SensorOrigin || peak);
+  const PhaserDiagnostics& diagnostics = result.diagnostics;
+  const bool peak = diagnostics.translation_score >= params.min_peak_score ||
+                    (diagnostics.translation_score >= 0.5 * params.min_peak_score &&
+                     diagnostics.normalized_overlap >= params.min_normalized_overlap);
+  return diagnostics.verified &&
+         (result.projection_center == ProjectionCenter::SensorOrigin || peak);
 }
 
 /** align() on legal inputs. \throws InvalidArgument when a cloud has no signal. */
@@ -195,45 +197,47 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
                    guess.topRightCorner<3, 1>();
   const ProjectionCenter center =
       chooseCenter(target, moved, guess, params.projection_center);
-  StageParameters p;
-  static_cast<PhaserParameters&>(p) = params;
-  p.sensor_centered = center == ProjectionCenter::SensorOrigin;
-  p.num_threads = resolveThreadCount(params.num_threads);
+  StageParameters stage_params;
+  static_cast<PhaserParameters&>(stage_params) = params;
+  stage_params.sensor_centered = center == ProjectionCenter::SensorOrigin;
+  stage_params.num_threads = resolveThreadCount(params.num_threads);
   // The tilt pull the normalized refinement corrects comes from a scanner's
   // field-of-view band, seen about its origin; about a centroid there is none.
-  p.normalized_refinement = params.normalized_refinement && p.sensor_centered;
+  stage_params.normalized_refinement =
+      params.normalized_refinement && stage_params.sensor_centered;
+  PhaserResult result;
   Eigen::Vector3d target_center;
-  double target_ms = 0.0;
-  const std::shared_ptr<const TargetModel> model =
-      targetModel(target, center, p, target_center, target_ms);
+  const std::shared_ptr<const TargetModel> model = targetModel(
+      target, center, stage_params, target_center, result.diagnostics.times.target);
   const Eigen::Vector3d source_center =
       center == ProjectionCenter::Centroid
           ? Eigen::Vector3d(moved.rowwise().mean())
           : Eigen::Vector3d(guess.topRightCorner<3, 1>());
   moved.colwise() -= source_center;
-  PhaserResult r = detail::estimateCentered(*model, moved, p, source.channels);
-  r.target_ms = target_ms;
-  r.projection_center = center;
-  r.transformation =
-      callerFrame(r.rotation, r.translation, source_center, target_center, guess);
-  if (!r.transformation.allFinite())
+  const RigidPose pose =
+      detail::estimateCentered(*model, moved, stage_params, source.channels, result);
+  result.projection_center = center;
+  result.transformation =
+      callerFrame(pose.R, pose.t, source_center, target_center, guess);
+  if (!result.transformation.allFinite())
     throw InvalidArgument("the estimate is not finite");
-  r.lever_arm = r.rotation * source_center;
-  r.fit_covariance = aboutTranslation(
-      r.fit_covariance, r.transformation.topRightCorner<3, 1>() - target_center);
-  for (RotationHypothesis& h : r.hypotheses)
+  result.lever_arm = pose.R * source_center;
+  result.fit_covariance =
+      aboutTranslation(result.fit_covariance,
+                       result.transformation.topRightCorner<3, 1>() - target_center);
+  for (Hypothesis& h : result.diagnostics.hypotheses)
     h.transformation =
         callerFrame(h.rotation, h.translation, source_center, target_center, guess);
-  r.converged = converged(r, params);
-  return r;
+  result.converged = converged(result, params);
+  return result;
 }
 
 PhaserResult failed(const Eigen::Matrix4d& guess, std::string reason)
 {
-  PhaserResult r;
-  r.transformation = guess;
-  r.error = std::move(reason);
-  return r;
+  PhaserResult result;
+  result.transformation = guess;
+  result.error = std::move(reason);
+  return result;
 }
 
 } // namespace
@@ -256,9 +260,10 @@ PhaserResult align(const Target& target, const SourceCloud& source,
 BinghamDistribution rotationUncertainty(const PhaserResult& result)
 {
   BinghamDistribution b; // uniform: what is known without an estimate
-  if (!result.rotation_samples.empty()) {
+  const PhaserDiagnostics& diagnostics = result.diagnostics;
+  if (!diagnostics.rotation_samples.empty()) {
     try {
-      b = fitBingham(result.rotation_samples, result.rotation_weights);
+      b = fitBingham(diagnostics.rotation_samples, diagnostics.rotation_weights);
     } catch (const InvalidArgument&) { // all weights zero: a flat block
     }
   }

@@ -1,6 +1,8 @@
 /*
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
+ *
+ * The target model, the source context and the order of the stages of one estimate.
  */
 #include "pipeline/pipeline_internal.h"
 #include "support/error.h"
@@ -12,32 +14,21 @@
 #include <cmath>
 
 namespace pcl::phaser {
+namespace detail {
 
 namespace {
 
-using detail::Clock;
-using detail::msSince;
-
-SpatialGridParameters gridParameters(const PhaserParameters& p)
-{
-  SpatialGridParameters g;
-  g.grid_size = p.spatial_grid_size;
-  g.voxel_size = p.voxel_size;
-  return g;
-}
-
-/** Fused spherical spectrum of a cloud; throws when the cloud carries no spherical
- *  signal. */
+/** Fused spherical spectrum of the \a which cloud, its times into \a times.
+ *  \throws InvalidArgument when the cloud carries no spherical signal */
 SphericalSpectrum sphericalSpectrum(const Eigen::Matrix3Xd& points,
                                     const ChannelValues& channels,
-                                    const PhaserParameters& p, const char* which,
-                                    double& sampling_ms, double& sht_ms,
-                                    SphericalSupport* support = nullptr)
+                                    const PhaserParameters& params, const char* which,
+                                    StageTimes& times, SphericalSupport* support)
 {
   int observed = 0;
-  SphericalSpectrum F =
-      cloudSphericalSpectrum(points, channels, p.bandwidth, p.fusion_levels,
-                             p.num_threads, observed, sampling_ms, sht_ms, support);
+  SphericalSpectrum F = cloudSphericalSpectrum(
+      points, channels, params.bandwidth, params.fusion_levels, params.num_threads,
+      observed, times.sampling, times.sht, support);
   if (observed < 2)
     throw InvalidArgument(
         std::string(which) +
@@ -51,7 +42,7 @@ SphericalSpectrum sphericalSpectrum(const Eigen::Matrix3Xd& points,
 /** The target points inside the cube that holds the inner 75% of them (by distance from
  *  the center): after the first pass the residual shift is small, so a fine grid over
  *  the densely observed region measures it best. */
-std::vector<Eigen::Index> innerRegion(const Eigen::Matrix3Xd& points)
+Eigen::Matrix3Xd innerRegion(const Eigen::Matrix3Xd& points)
 {
   std::vector<double> r(points.cols());
   for (Eigen::Index i = 0; i < points.cols(); ++i)
@@ -59,17 +50,18 @@ std::vector<Eigen::Index> innerRegion(const Eigen::Matrix3Xd& points)
   std::vector<double> sorted = r;
   const std::size_t k = (sorted.size() * 3) / 4;
   std::nth_element(sorted.begin(), sorted.begin() + k, sorted.end());
-  const double half = sorted[k];
-  std::vector<Eigen::Index> inner;
+  std::vector<Eigen::Index> keep;
   for (Eigen::Index i = 0; i < points.cols(); ++i)
-    if (r[i] <= half)
-      inner.push_back(i);
+    if (r[i] <= sorted[k])
+      keep.push_back(i);
+  Eigen::Matrix3Xd inner(3, keep.size());
+  for (std::size_t i = 0; i < keep.size(); ++i)
+    inner.col(i) = points.col(keep[i]);
   return inner;
 }
 
-/** The verification samples of \a points: one (the centroid) per cube of \a radius,
- *  evenly every k-th of them when there are more than kMaxVerificationSamples (k =
- *  ceil(n / kMaxVerificationSamples)). */
+/** One sample (the centroid) per cube of \a radius, every k-th of them when there are
+ *  more than kMaxVerificationSamples (k = ceil(n / kMaxVerificationSamples)). */
 Eigen::Matrix3Xd verificationSamples(const Eigen::Matrix3Xd& points, double radius)
 {
   Eigen::Matrix3Xd all = voxelCentroids(points, radius);
@@ -83,133 +75,8 @@ Eigen::Matrix3Xd verificationSamples(const Eigen::Matrix3Xd& points, double radi
   return kept;
 }
 
-} // namespace
-
-namespace detail {
-
-double msSince(Clock::time_point start)
-{
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-/** The source's spherical spectrum, timed; with its support when \a support is given.
- */
-SphericalSpectrum sourceSpectrum(const Eigen::Matrix3Xd& points,
-                                 const ChannelValues& channels,
-                                 const PhaserParameters& p, PhaserResult& e,
-                                 SphericalSupport* support)
-{
-  return sphericalSpectrum(points, channels, p, "source", e.sampling_ms, e.sht_ms,
-                           support);
-}
-
-/** The global search: C on the SO(3) grid. */
-So3CorrelationGrid correlateRotation(const TargetModel& target,
-                                     const SphericalSpectrum& H,
-                                     const PhaserParameters& p, PhaserResult& e)
-{
-  const auto t = Clock::now();
-  So3CorrelationGrid C = So3Correlator::instance(p.bandwidth)
-                             ->correlate(target.spherical, H, p.num_threads);
-  e.so3_ms += msSince(t);
-  return C;
-}
-
-/** Newton refinement of \a R on C, timed; with PhaserParameters::normalized_refinement
- *  then on the energy-normalized correlation (see refineRotation: plain C leans towards
- *  equal sensor tilt) near that maximum, with the supports given. Returns the exact C
- *  at the result through \a value. */
-Eigen::Matrix3d refine(const TargetModel& target, const SphericalSpectrum& H,
-                       const SphericalSupport& support, const Eigen::Matrix3d& R,
-                       const PhaserParameters& p, double& value, PhaserResult& e)
-{
-  const auto t = Clock::now();
-  RefinedRotation refined = refineRotation(target.spherical, H, R, p.bandwidth,
-                                           p.refinement_iterations, p.num_threads);
-  if (p.normalized_refinement)
-    refined = refineRotation(target.spherical, H, refined.rotation, p.bandwidth,
-                             p.refinement_iterations, p.num_threads,
-                             &target.spherical_support, &support,
-                             normalizedRefinementRadius(p.bandwidth));
-  value = refined.value;
-  e.refinement_ms += msSince(t);
-  return refined.rotation;
-}
-
-/** Correlation peak over the norms of the two grids (0 when one is empty). */
-double normalizedPeak(double peak, double energy_product)
-{
-  return energy_product > 0.0 ? peak / std::sqrt(energy_product) : 0.0;
-}
-
-/** Grid samples around a peak as rotations of the final estimate: each sample's offset
- *  from the peak, delta_i = R_i R_peak^T, applied on the left of \a estimate (so the
- *  spread is expressed in the target frame), with weights from the correlation above
- * the lowest value of the block. */
-void rotationSamples(const So3CorrelationGrid& C, const So3GridIndex& peak,
-                     const Eigen::Matrix3d& estimate, PhaserResult& e)
-{
-  const std::vector<RotationSample> block = rotationNeighborhood(C, peak, 1);
-  const Eigen::Matrix3d R_peak =
-      rotationFromEuler(gridEuler(peak, C.outputBandwidth()));
-  double lowest = block.front().value;
-  for (const RotationSample& s : block)
-    lowest = std::min(lowest, s.value);
-  e.rotation_samples.clear();
-  e.rotation_weights.clear();
-  for (const RotationSample& s : block) {
-    const Eigen::Quaterniond q(s.rotation * R_peak.transpose() * estimate);
-    e.rotation_samples.emplace_back(q.w(), q.x(), q.y(), q.z());
-    e.rotation_weights.push_back(s.value - lowest);
-  }
-}
-
-/** Binary occupancy spectrum of \a points on \a grid. */
-SpatialSpectrum occupancySpectrum(const SpatialGrid& grid,
-                                  const Eigen::Matrix3Xd& points, int num_threads)
-{
-  SpatialVoxelParameters voxel;
-  voxel.saturation = kOccupancySaturation;
-  voxel.num_threads = num_threads;
-  return computeSpectrum(voxelize(grid, points, voxel), num_threads);
-}
-
-double volumeAt(const SpatialVolume& v, const Eigen::Vector3i& i)
-{
-  return v.values[v.grid.flatIndex(i.x(), i.y(), i.z())];
-}
-
-/** Translation of the (already rotated) \a points onto \a target by the occupancy
- *  correlation, whitened by \a whitening (correlateSpectraWhitened), sub-voxel peak.
- *  When \a volume is given (the final stage), the plain correlation volume is kept for
- *  the covariance and the peak's sidelobe score is computed. */
-SpatialCorrelationResult shiftOf(const SpatialSpectrum& target,
-                                 const Eigen::Matrix3Xd& points, double whitening,
-                                 const PhaserParameters& p, PhaserResult& e,
-                                 SpatialVolume* volume, double* source_energy)
-{
-  const auto t = Clock::now();
-  SpatialSpectrum S = occupancySpectrum(target.grid, points, p.num_threads);
-  if (source_energy)
-    *source_energy = spectrumEnergy(S);
-  SpatialVolume plain;
-  if (volume && whitening > 0.0)
-    plain = correlateSpectra(target, S, p.num_threads);
-  SpatialVolume C =
-      correlateSpectraWhitened(target, std::move(S), whitening, p.num_threads);
-  const SpatialCorrelationResult shift = findSpatialPeak(
-      C, SpatialPeakRefinement::kGaussian, p.num_threads, volume != nullptr);
-  if (volume)
-    *volume = whitening > 0.0 ? std::move(plain) : std::move(C);
-  e.translation_ms += msSince(t);
-  return shift;
-}
-
-namespace {
-
 /** \a points indexed at \a radius with their patch normals, one point (the centroid)
- *  per cube of radius / kIndexThinning: distances move by a few centimeters, while a
- *  cell near the sensor held thousands of points. */
+ *  per cube of radius / kIndexThinning. */
 PointIndex thinnedIndex(const Eigen::Matrix3Xd& points, const SurfacePatches& patches,
                         double radius)
 {
@@ -218,9 +85,8 @@ PointIndex thinnedIndex(const Eigen::Matrix3Xd& points, const SurfacePatches& pa
 }
 
 /** The target's surface patches and what derives from them: the orientation histogram,
- *  the thickness, the verification index and, about sensor origins, the polish's reach
- *  index and the evenly spaced samples of the reverse free-space test with their
- *  weights (one thread). */
+ *  the thickness, the verification index and, about sensor origins, the reach index
+ *  and the weighted samples of the reverse free-space test (one thread). */
 void addSurfaceModel(TargetModel& model, const Eigen::Matrix3Xd& points,
                      double coarse_voxel)
 {
@@ -240,22 +106,74 @@ void addSurfaceModel(TargetModel& model, const Eigen::Matrix3Xd& points,
   }
 }
 
-/** The occupancy spectrum of the target's inner region, the fine grid of the later
- *  passes (one thread). */
-void addFineGrid(TargetModel& model, const Eigen::Matrix3Xd& points)
+/** The occupancy spectrum of the target's inner region with little padding, the fine
+ *  grid of the later passes (one thread). */
+void addFineGrid(TargetModel& model, const Eigen::Matrix3Xd& points,
+                 SpatialGridParameters grid)
 {
-  const std::vector<Eigen::Index> keep = innerRegion(points);
-  Eigen::Matrix3Xd inner(3, keep.size());
-  for (std::size_t i = 0; i < keep.size(); ++i)
-    inner.col(i) = points.col(keep[i]);
-  SpatialGridParameters fine_grid = gridParameters(model.params);
-  fine_grid.padding = 0.1;
-  fine_grid.min_margin = 2.0 * fine_grid.padding * inner.cwiseAbs().maxCoeff();
-  model.fine = occupancySpectrum(makeSpatialGrid(inner, fine_grid), inner, 1);
+  const Eigen::Matrix3Xd inner = innerRegion(points);
+  grid.padding = 0.1;
+  grid.min_margin = 2.0 * grid.padding * inner.cwiseAbs().maxCoeff();
+  model.fine = occupancySpectrum(makeSpatialGrid(inner, grid), inner, 1);
   model.fine_energy = spectrumEnergy(model.fine);
 }
 
+/** What the verification and the orientation hypotheses need of the source. */
+SourceContext sourceContext(const TargetModel& target, const Eigen::Matrix3Xd& points,
+                            const ChannelValues& channels,
+                            const StageParameters& params, StageTimes& times)
+{
+  const auto start = Clock::now();
+  SourceContext source{target, points, channels, params, {}, {}, {}, {}};
+  const double coarse_voxel = target.coarse.grid.voxel_size;
+  // Four independent passes over the points as one-thread tasks, the longest first.
+  runTasks(4, params.num_threads, [&](int part) {
+    switch (part) {
+    case 0:
+      source.patches =
+          surfacePatches(points, kPatchVoxels * coarse_voxel, Eigen::Vector3d::Zero());
+      break;
+    case 1:
+      source.samples.points = verificationSamples(points, target.index.radius());
+      break;
+    case 2:
+      if (params.sensor_centered)
+        source.free_space =
+            freeSpace(points, kFreeSpaceBandwidth, kFreeSpaceMargin * coarse_voxel, 1);
+      break;
+    default:
+      source.coarse_points = voxelCentroids(points, coarse_voxel / kIndexThinning);
+    }
+  });
+  source.samples.weights = orientationWeights(source.patches, source.samples.points);
+  source.samples.normals = patchNormalsAt(source.patches, source.samples.points);
+  times.verification += msSince(start);
+  return source;
+}
+
 } // namespace
+
+double msSince(Clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+SphericalSpectrum sourceSpectrum(const Eigen::Matrix3Xd& points,
+                                 const ChannelValues& channels,
+                                 const PhaserParameters& params, StageTimes& times,
+                                 SphericalSupport* support)
+{
+  return sphericalSpectrum(points, channels, params, "source", times, support);
+}
+
+SpatialSpectrum occupancySpectrum(const SpatialGrid& grid,
+                                  const Eigen::Matrix3Xd& points, int num_threads)
+{
+  SpatialVoxelParameters voxel;
+  voxel.saturation = kOccupancySaturation;
+  voxel.num_threads = num_threads;
+  return computeSpectrum(voxelize(grid, points, voxel), num_threads);
+}
 
 std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
                                                  const StageParameters& params,
@@ -265,15 +183,14 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
   const ChannelValues channels = normalizeChannels(raw_channels, points.cols());
   auto model = std::make_shared<TargetModel>();
   model->params = params;
-  model->channels = channels.size();
-  SpatialGridParameters coarse_grid;
-  coarse_grid.grid_size = params.spatial_grid_size;
-  coarse_grid.voxel_size = params.voxel_size;
-  const SpatialGrid coarse = makeSpatialGrid(points, coarse_grid);
+  SpatialGridParameters grid;
+  grid.grid_size = params.spatial_grid_size;
+  grid.voxel_size = params.voxel_size;
+  const SpatialGrid coarse = makeSpatialGrid(points, grid);
   StageParameters single = params;
   single.num_threads = 1;
-  // Five independent parts as one-thread tasks, the longest first: each part gives the
-  // same result on any thread count, and in turn they left the other threads idle.
+  // Five independent parts as one-thread tasks, the longest first: each gives the same
+  // result on any thread count.
   runTasks(5, params.num_threads, [&](int part) {
     switch (part) {
     case 0:
@@ -281,7 +198,7 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
       break;
     case 1:
       if (params.passes > 1)
-        addFineGrid(*model, points);
+        addFineGrid(*model, points, grid);
       break;
     case 2:
       model->coarse = occupancySpectrum(coarse, points, 1);
@@ -293,9 +210,9 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
                                       kFreeSpaceMargin * coarse.voxel_size, 1);
       break;
     default: {
-      double sampling_ms = 0.0, sht_ms = 0.0; // not reported for the target
+      StageTimes unreported;
       model->spherical = sphericalSpectrum(
-          points, channels, single, "target", sampling_ms, sht_ms,
+          points, channels, single, "target", unreported,
           params.normalized_refinement ? &model->spherical_support : nullptr);
       model->spherical_norm = std::sqrt(spectrumSquaredNorm(model->spherical));
     }
@@ -305,62 +222,29 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
   return model;
 }
 
-namespace {
-
-/** What the verification and the orientation hypotheses need of the source. */
-SourceContext sourceContext(const TargetModel& target, const Eigen::Matrix3Xd& points,
-                            const ChannelValues& channels, const StageParameters& p,
-                            PhaserResult& e)
+RigidPose estimateCentered(const TargetModel& target, const Eigen::Matrix3Xd& points,
+                           const StageParameters& params,
+                           const ChannelValues& raw_channels, PhaserResult& result)
 {
-  const auto t = Clock::now();
-  SourceContext s{target, points, channels, p, {}, {}, {}, {}};
-  const double coarse_voxel = target.coarse.grid.voxel_size;
-  // Four independent passes over the points as one-thread tasks, the longest first
-  // (each gives the same result on any thread count; in turn they left the other
-  // threads idle).
-  runTasks(4, p.num_threads, [&](int part) {
-    switch (part) {
-    case 0:
-      s.patches =
-          surfacePatches(points, kPatchVoxels * coarse_voxel, Eigen::Vector3d::Zero());
-      break;
-    case 1:
-      s.samples.points = verificationSamples(points, e.verification_radius);
-      break;
-    case 2:
-      if (p.sensor_centered)
-        s.free_space =
-            freeSpace(points, kFreeSpaceBandwidth, kFreeSpaceMargin * coarse_voxel, 1);
-      break;
-    default:
-      s.coarse_points = voxelCentroids(points, coarse_voxel / kIndexThinning);
-    }
-  });
-  s.samples.weights = orientationWeights(s.patches, s.samples.points);
-  s.samples.normals = patchNormalsAt(s.patches, s.samples.points);
-  e.verification_ms += msSince(t);
-  return s;
-}
-
-} // namespace
-
-PhaserResult estimateCentered(const TargetModel& target, const Eigen::Matrix3Xd& points,
-                              const StageParameters& p,
-                              const ChannelValues& raw_channels)
-{
-  if (raw_channels.size() != target.channels)
-    throw InvalidArgument("the source has " + std::to_string(raw_channels.size()) +
-                          " channels, the target " + std::to_string(target.channels));
   const ChannelValues channels = normalizeChannels(raw_channels, points.cols());
-  PhaserResult e;
-  e.verification_radius = target.index.radius();
-  const SourceContext s = sourceContext(target, points, channels, p, e);
-  const SphericalSpectrum H = sourceSpectrum(points, channels, p, e);
-  const So3CorrelationGrid C = correlateRotation(target, H, p, e);
-  Pose pose = globalSearch(s, C, std::sqrt(spectrumSquaredNorm(H)), e);
-  pose = reprojectionPasses(s, pose, e);
-  finalStage(s, pose, e);
-  return e;
+  PhaserDiagnostics& diagnostics = result.diagnostics;
+  StageTimes& times = diagnostics.times;
+  diagnostics.verification_radius = target.index.radius();
+  const SourceContext source = sourceContext(target, points, channels, params, times);
+  const SphericalSpectrum H = sourceSpectrum(points, channels, params, times);
+  const auto start = Clock::now();
+  const So3CorrelationGrid C = So3Correlator::instance(params.bandwidth)
+                                   ->correlate(target.spherical, H, params.num_threads);
+  times.so3 += msSince(start);
+  GlobalSearch search =
+      globalSearch(source, C, std::sqrt(spectrumSquaredNorm(H)), times);
+  result.chosen_hypothesis = search.chosen;
+  diagnostics.hypotheses = std::move(search.hypotheses);
+  diagnostics.passes = 1;
+  Pose pose = reprojectionPasses(source, search.pose, diagnostics.passes, times);
+  pose = refineFinalPose(source, pose, result);
+  judgeFinalPose(source, pose, result);
+  return pose;
 }
 
 } // namespace detail

@@ -5,7 +5,7 @@
 #pragma once
 
 // Internal to the engine (not installed): the target model, the state of one estimate
-// and the stages pipeline.cpp and pipeline_stages.cpp share.
+// and the stages the files of src/core/pipeline share.
 #include "channels/cloud_signals.h"
 #include "channels/surface_orientation.h"
 #include "so3/so3_correlation.h"
@@ -38,31 +38,17 @@ namespace pcl::phaser {
 constexpr int kMinVerificationSamples = 20;
 
 /** Most verification samples of the source, and of the target for the reverse
- *  free-space test: an inlier share from this many has a standard error below 0.004,
- *  while a volumetric cloud (one sample per occupied cell of the radius) could give
- *  hundreds of thousands, each looked up in every verification and polish sweep. A
- *  LiDAR scan gives about 3,000, a Kinect frame 15,000. */
+ *  free-space test: an inlier share from this many has a standard error below 0.004
+ *  (a LiDAR scan gives about 3,000, a volumetric cloud hundreds of thousands). */
 constexpr Eigen::Index kMaxVerificationSamples = 16384;
 
 /** How far (radians, at B = 64, scaled by 64 / B) the normalized refinement may move
- * the rotation from the maximum of plain C; the radius was chosen on the demo pairs and
- *  the NEES study (doc/benchmarks.md section 10). */
+ *  the rotation from the maximum of plain C; chosen on the demo pairs and the NEES
+ *  study. */
 constexpr double kNormalizedRefinementRadius = 0.75 * M_PI / 180.0;
 
-/** The trust radius (radians) at bandwidth B: kNormalizedRefinementRadius * 64 / B. */
-inline double normalizedRefinementRadius(int bandwidth)
-{
-  return kNormalizedRefinementRadius * 64.0 / bandwidth;
-}
-
-/** The stages fill the centered-frame fields of the result, align() the caller-frame
- *  ones; the old name of the result is kept for pipeline_stages.cpp only. */
-using PhaserEstimate = PhaserResult;
-
-/** The parameters the stages run with: the caller's, with normalized_refinement off
- *  about centroids, and whether the clouds are seen from their sensor origins (then
- *  hypotheses are ranked by verifyPose, including the samples in space the target saw
- *  through, and the orientation histograms add hypotheses). */
+/** The parameters the stages run with: the caller's, normalized_refinement off about
+ *  centroids, and whether the clouds are seen from their sensor origins. */
 struct StageParameters : PhaserParameters {
   bool sensor_centered = true;
 };
@@ -70,7 +56,6 @@ struct StageParameters : PhaserParameters {
 class TargetModel {
 public:
   StageParameters params;
-  std::size_t channels = 0; ///< number of fused channels beyond the geometry
   SphericalSpectrum spherical;
   SphericalSupport spherical_support; ///< for the normalized refinement
   double spherical_norm = 0.0;
@@ -80,13 +65,11 @@ public:
   SpatialSpectrum coarse, fine;
   double coarse_energy = 0.0, fine_energy = 0.0; ///< spectrumEnergy of coarse and fine
   PointIndex index;                              ///< target points, for verifyPose
-  /** The target points at a coarse voxel's radius (kPolishReachVoxels): the first step
-   *  of every polish matches against it (sensor-centered only). */
-  PointIndex reach_index;
+  PointIndex reach_index; ///< at kPolishReachVoxels (sensor-centered only)
   double thickness = 0.0; ///< SurfacePatches::thickness of the target
   FreeSpace free_space; ///< what the target's sensor saw through (sensor-centered only)
-  /** Evenly spaced target points with their orientation weights: the reverse
-   *  free-space test, against what the source's sensor saw (sensor-centered only). */
+  /** Evenly spaced target points with their orientation weights, for the reverse
+   *  free-space test (sensor-centered only). */
   Eigen::Matrix3Xd samples;
   Eigen::VectorXd sample_weights;
   double preparation_ms = 0.0;
@@ -100,28 +83,24 @@ using Clock = std::chrono::steady_clock;
 constexpr double kHypothesisSeparation = 10.0 * M_PI / 180.0;
 
 /** Largest tilt (radians; any yaw) of the residual rotation a re-projection pass, or
- *  the final stage after none, searches for: the residual of a pass-1 hypothesis is a
- *  few grid cells, so only the beta rows near the identity are correlated (about a
- *  sixth of the SO(3) grid at B = 64). */
+ *  the final refinement after none, searches for: the residual of a pass-1 hypothesis
+ *  is a few grid cells, so only the beta rows near the identity are correlated. */
 constexpr double kResidualTilt = 20.0 * M_PI / 180.0;
 
 /** Verification radius, in coarse voxels. */
 constexpr double kVerificationVoxels = 0.5;
 
-/** Radius, in coarse voxels, of the index the polish takes its first step against. A
- *  coarse translation peak can be a voxel off, twice the verification radius: most
- *  samples then have no target point within that radius, and the few that do (the
- *  ground) can walk the climb away from the truth (benchmarks.md 9.21). */
+/** Radius, in coarse voxels, of the index the local refinement takes its first step
+ *  against: a coarse translation peak can be a voxel off, twice the verification
+ *  radius, and the few samples then within it (the ground) can walk the climb away. */
 constexpr double kPolishReachVoxels = 1.0;
 
-/** The verification index keeps one point per cube of its radius / kIndexThinning;
- *  the pass-1 occupancy one per cube of a coarse voxel / kIndexThinning. */
+/** The verification index and pass-1 occupancy keep one point per cube of their
+ *  radius (voxel) / kIndexThinning. */
 constexpr double kIndexThinning = 8.0;
 
-/** Direction cells of the free-space test (about 1.4 deg) and its margin in coarse
- *  voxels. */
+/** Direction cells of the free-space test (1.4 deg) and its margin in coarse voxels. */
 constexpr int kFreeSpaceBandwidth = 128;
-
 constexpr double kFreeSpaceMargin = 1.0;
 
 /** Inlier share one hypothesis at least must reach for verification to rank them. */
@@ -133,35 +112,31 @@ constexpr double kMinSupport = 0.5;
 /** Largest surface thickness, in verification radii, at which poses are verified. */
 constexpr double kMaxThickness = 1.0 / 3.0;
 
-/** Weight of a free-space violation (of either sensor) against an inlier in rank(). */
+/** Weight of a free-space violation (of either sensor) against an inlier in the rank.
+ */
 constexpr double kViolationWeight = 6.0;
 
-/** The final pose counts as distinct from the best other hypothesis when its rank
- *  exceeds that one's by more than this many standard errors of the difference
- *  (PhaserResult::runner_up_error): the one-sided 99 % point of a normal. */
+/** The final pose is distinct from the runner-up when its rank exceeds that one's by
+ *  more than this many standard errors: the one-sided 99 % point of a normal. */
 constexpr double kDistinctErrors = 2.33;
 
-/** Saturation of the occupancy grids: a voxel with a fraction of a point's weight is
- *  already almost full, so occupancy is binary and the near-sensor density (each scan
- *  is densest around its own sensor) does not vote for stacking the sensors. */
+/** Saturation of the occupancy grids: binary occupancy, so the near-sensor density
+ *  does not vote for stacking the sensors. */
 constexpr double kOccupancySaturation = 0.05;
 
 /** Patches of the orientation histogram, in coarse voxels. */
 constexpr double kPatchVoxels = 1.0;
 
-/** Translation peaks beyond the highest that each pass-1 rotation contributes when the
- *  pass-1 choice misses the verification limits or does not stand out (standsOut), and
- *  their least separation in coarse voxels. */
+/** When the pass-1 choice would not be claimed: the translation peaks beyond the
+ *  highest that each pass-1 rotation adds, their least separation in coarse voxels,
+ *  and the orientation peaks beyond the orientation candidates that become hypotheses
+ *  (a scene of orthogonal walls has near-equal peaks at its symmetric orientations, and
+ *  on a partial view the right one ranked below ten of them). */
 constexpr int kExtraTranslationPeaks = 2;
-/** Peaks of the orientation histograms' correlation beyond the orientation candidates
- *  that become hypotheses of their own in that case too: a scene of orthogonal walls
- *  and ground has near-equal peaks at its 90, 120 and 180 deg symmetric orientations,
- *  and on a partial view the right one can rank below ten of them (benchmarks.md
- *  9.19). */
-constexpr int kSpareOrientationPeaks = 10;
 constexpr int kPeakSeparation = 3;
+constexpr int kSpareOrientationPeaks = 10;
 
-/** Gauss-Newton steps of refinePose on the final pose. */
+/** Gauss-Newton steps of the local refinement on the verification samples. */
 constexpr int kPolishIterations = 10;
 
 /** The source seen from a pose's viewpoint: its spectrum (with its support when the
@@ -173,17 +148,14 @@ struct Viewpoint {
   So3GridIndex peak{};
 };
 
-/** A pose and how well it verifies; with the rotation grid of the last accepted
- *  re-projection pass (its peak is near the identity), if one was accepted. */
-struct Pose {
-  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d t = Eigen::Vector3d::Zero();
-  PoseVerification v;
+/** A pose (centered coordinates) and how it verifies; with the rotation grid of the
+ *  last accepted re-projection pass (its peak near the identity), if any. */
+struct Pose : RigidPose {
+  Verification verification;
   std::shared_ptr<const So3CorrelationGrid> grid;
   So3GridIndex peak{};
   bool verifiable = false; ///< hypotheses and passes are ranked by verification
-  /** What a refused re-projection pass measured from this pose's own viewpoint: the
-   *  final stage starts from it instead of measuring it again. */
+  /** What a refused re-projection pass measured from this pose's own viewpoint. */
   std::shared_ptr<const Viewpoint> view;
 };
 
@@ -192,18 +164,23 @@ struct SourceContext {
   const TargetModel& target;
   const Eigen::Matrix3Xd& points;
   const ChannelValues& channels;
-  const StageParameters& p;
+  const StageParameters& params;
   VerificationSamples samples; ///< evenly spaced source points for verifyPose
   SurfacePatches patches;      ///< planar patches of the source (coarse voxels)
   FreeSpace free_space;        ///< what the source's sensor saw through
-  /** The points thinned to one (the centroid) per kIndexThinning-th of a coarse voxel:
-   *  the pass-1 occupancy grids are binary, so they barely change, at a fraction of
-   *  the cost of rotating and voxelizing every point per hypothesis. */
+  /** The points thinned to one (the centroid) per kIndexThinning-th of a coarse voxel,
+   *  for the pass-1 occupancy grids: binary, so they barely change. */
   Eigen::Matrix3Xd coarse_points;
 };
 
-/** \a task(k) for k = 0 .. count - 1 as independent one-thread tasks (parallelFor, one
- *  task per chunk: a thread the scheduler parks delays only its own task); the first
+/** What pass 1 found: every hypothesis, verified, and the one chosen with its pose. */
+struct GlobalSearch {
+  std::vector<Hypothesis> hypotheses;
+  int chosen = 0;
+  Pose pose;
+};
+
+/** \a task(k) for k = 0 .. count - 1 as independent one-thread tasks; the first
  *  exception is rethrown when the others have ended. */
 template <typename Task>
 void runTasks(int count, int num_threads, const Task& task)
@@ -217,99 +194,71 @@ void runTasks(int count, int num_threads, const Task& task)
 
 double msSince(Clock::time_point start);
 
-/** The source's spherical spectrum, timed; with its support when \a support is given.
- */
+/** The source's spherical spectrum, its time into \a times; with its support when
+ *  \a support is given. \throws InvalidArgument when it carries no spherical signal */
 SphericalSpectrum sourceSpectrum(const Eigen::Matrix3Xd& points,
                                  const ChannelValues& channels,
-                                 const PhaserParameters& p, PhaserResult& e,
+                                 const PhaserParameters& params, StageTimes& times,
                                  SphericalSupport* support = nullptr);
-
-/** The global search: C on the SO(3) grid. */
-So3CorrelationGrid correlateRotation(const TargetModel& target,
-                                     const SphericalSpectrum& H,
-                                     const PhaserParameters& p, PhaserResult& e);
-
-/** Newton refinement of \a R on C, timed; with PhaserParameters::normalized_refinement
- *  then on the energy-normalized correlation (see refineRotation: plain C leans towards
- *  equal sensor tilt) near that maximum, with the supports given. Returns the exact C
- *  at the result through \a value. */
-Eigen::Matrix3d refine(const TargetModel& target, const SphericalSpectrum& H,
-                       const SphericalSupport& support, const Eigen::Matrix3d& R,
-                       const PhaserParameters& p, double& value, PhaserResult& e);
-
-/** Correlation peak over the norms of the two grids (0 when one is empty). */
-double normalizedPeak(double peak, double energy_product);
-
-/** Grid samples around a peak as rotations of the final estimate: each sample's offset
- *  from the peak, delta_i = R_i R_peak^T, applied on the left of \a estimate (so the
- *  spread is expressed in the target frame), with weights from the correlation above
- * the lowest value of the block. */
-void rotationSamples(const So3CorrelationGrid& C, const So3GridIndex& peak,
-                     const Eigen::Matrix3d& estimate, PhaserResult& e);
 
 /** Binary occupancy spectrum of \a points on \a grid. */
 SpatialSpectrum occupancySpectrum(const SpatialGrid& grid,
                                   const Eigen::Matrix3Xd& points, int num_threads);
 
-double volumeAt(const SpatialVolume& v, const Eigen::Vector3i& i);
+/** Pass 1: every rotation hypothesis through the coarse translation search,
+ *  verification and local refinement, and the best of them (by verification where
+ *  poses can be verified, else the range peak that overlaps most). */
+GlobalSearch globalSearch(const SourceContext& source,
+                          const So3CorrelationGrid& correlation, double source_norm,
+                          StageTimes& times);
 
-/** Translation of the (already rotated) \a points onto \a target by the occupancy
- *  correlation, whitened by \a whitening (correlateSpectraWhitened), sub-voxel peak.
- *  When \a volume is given (the final stage), the plain correlation volume is kept for
- *  the covariance and the peak's sidelobe score is computed. */
-SpatialCorrelationResult shiftOf(const SpatialSpectrum& target,
-                                 const Eigen::Matrix3Xd& points, double whitening,
-                                 const PhaserParameters& p, PhaserResult& e,
-                                 SpatialVolume* volume = nullptr,
-                                 double* source_energy = nullptr);
+/** Later passes from the viewpoint of \a pose, kept while they verify better;
+ *  \a passes counts those run. */
+Pose reprojectionPasses(const SourceContext& source, Pose pose, int& passes,
+                        StageTimes& times);
 
-/** Pass 1: every hypothesis through the coarse translation search and verification;
- *  see pipeline_stages.cpp for the ranking. */
-Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_norm,
-                  PhaserResult& e);
+/** The final rotation refinement and shift, kept when they verify better, and the
+ *  local refinement; their scores, translation covariance and rotation samples (the
+ *  uncertainty) into \a result. */
+Pose refineFinalPose(const SourceContext& source, Pose pose, PhaserResult& result);
 
-/** Later passes from the viewpoint of the estimate, kept while they verify no worse. */
-Pose reprojectionPasses(const SourceContext& s, Pose pose, PhaserResult& e);
+/** \a measured with its rank: score less kViolationWeight x both free-space
+ *  violations. */
+Verification ranked(const PoseVerification& measured);
 
-/** How a verified pose ranks (pipeline_verdict.cpp): the closeness-weighted inlier
- *  share less kViolationWeight x both free-space violations. */
-double rank(const PoseVerification& v);
+/** Whether \a verification meets the verification limits of \a params. */
+bool meetsLimits(const Verification& verification, const PhaserParameters& params);
 
-/** Whether \a v meets the verification limits of \a p (pipeline_verdict.cpp). */
-bool meetsLimits(const PoseVerification& v, const PhaserParameters& p);
-
-/** How the pose compared with the best hypothesis distinct from it (standsOut). */
+/** How the pose compared with the best hypothesis distinct from it. */
 struct Distinctness {
   bool stands_out = true; ///< true when no hypothesis is distinct
-  double runner_up_rank = -std::numeric_limits<double>::infinity(); ///< its rank
+  double runner_up_rank = -std::numeric_limits<double>::infinity();
   double error = 0.0; ///< standard error of the rank difference (sensor origins)
 };
 
-/** Whether \a pose (its verification set) outranks the best hypothesis distinct from it
- *  by more than kDistinctErrors standard errors of the difference (about centroids, the
- *  difference alone; pipeline_verdict.cpp). */
-Distinctness standsOut(const SourceContext& s, const Pose& pose,
-                       const std::vector<RotationHypothesis>& hypotheses);
+/** Whether \a pose outranks the best hypothesis distinct from it by more than
+ *  kDistinctErrors standard errors of the difference. */
+Distinctness standsOut(const SourceContext& source, const Pose& pose,
+                       const std::vector<Hypothesis>& hypotheses);
 
-/** The final \a pose, its verification figures and its covariance (fitCovariance) into
- *  \a e, and whether it is verified (pipeline_verdict.cpp). */
-void verdict(const SourceContext& s, const Pose& pose, PhaserResult& e);
-
-/** The final refinement, shift, uncertainty and verification decision, into \a e. */
-void finalStage(const SourceContext& s, Pose pose, PhaserResult& e);
+/** The final \a pose's verification, runner-up and fit covariance into \a result, and
+ *  whether it is verified, against result.diagnostics.hypotheses. */
+void judgeFinalPose(const SourceContext& source, const Pose& pose,
+                    PhaserResult& result);
 
 /** Prepares a target whose points are relative to its projection center.
- *  \throws InvalidArgument when the points carry no spherical signal (all at the
- *  center, or all in one direction) */
+ *  \throws InvalidArgument when the points carry no spherical signal */
 std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
                                                  const StageParameters& params,
                                                  const ChannelValues& channels);
 
 /** Registers a source (points relative to its projection center) against a target
- *  model prepared with \a p: the stages of one estimate, in centered coordinates.
+ *  model prepared with \a params: the stages in centered coordinates. Returns the
+ *  final pose; fills everything of \a result but the caller-frame fields.
  *  \throws InvalidArgument when the source carries no spherical signal */
-PhaserResult estimateCentered(const TargetModel& target, const Eigen::Matrix3Xd& points,
-                              const StageParameters& p, const ChannelValues& channels);
+RigidPose estimateCentered(const TargetModel& target, const Eigen::Matrix3Xd& points,
+                           const StageParameters& params, const ChannelValues& channels,
+                           PhaserResult& result);
 
 } // namespace detail
 } // namespace pcl::phaser

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <vector>
 
@@ -17,432 +16,502 @@ namespace detail {
 
 namespace {
 
-/** Verification of the pose (R, t) with \a threads threads (default: the parameters').
- */
-PoseVerification verify(const SourceContext& s, const Eigen::Matrix3d& R,
-                        const Eigen::Vector3d& t, PhaserEstimate& e, int threads = 0)
+/** Verification of the pose (R, t) with \a threads threads (default: the parameters'),
+ *  the reverse free-space test included about sensor origins. */
+Verification verifyBothWays(const SourceContext& source, const Eigen::Matrix3d& R,
+                            const Eigen::Vector3d& t, StageTimes& times,
+                            int threads = 0)
 {
   const auto start = Clock::now();
+  const StageParameters& params = source.params;
   if (threads <= 0)
-    threads = s.p.num_threads;
-  PoseVerification v = verifyPose(s.target.index, s.samples, R, t, threads,
-                                  s.p.sensor_centered ? &s.target.free_space : nullptr);
-  // The other way: target samples in space the source's sensor saw through.
-  if (s.p.sensor_centered)
-    v.reverse_free_space_violation =
-        freeSpaceViolation(s.free_space, s.target.samples, s.target.sample_weights,
+    threads = params.num_threads;
+  const TargetModel& target = source.target;
+  PoseVerification verification =
+      verifyPose(target.index, source.samples, R, t, threads,
+                 params.sensor_centered ? &target.free_space : nullptr);
+  if (params.sensor_centered)
+    verification.reverse_free_space_violation =
+        freeSpaceViolation(source.free_space, target.samples, target.sample_weights,
                            R.transpose(), -(R.transpose() * t), threads);
-  e.verification_ms += msSince(start);
-  return v;
+  times.verification += msSince(start);
+  return ranked(verification);
 }
 
-/** Rotation hypotheses: the distinct peaks of the range correlation \a C and of the
- *  orientation histograms' correlation; the next kSpareOrientationPeaks distinct peaks
- *  of the latter into \a spare (the peaks are taken greedily, so the first ones are
- *  those a request for fewer gives). */
-std::vector<RotationHypothesis>
-rotationHypotheses(const SourceContext& s, const So3CorrelationGrid& C, double h_norm,
-                   PhaserEstimate& e, std::vector<RotationHypothesis>& spare)
+/** The pose (R, t) with its verification (one thread). */
+Pose verifiedPose(const SourceContext& source, const RigidPose& rigid,
+                  StageTimes& times)
 {
-  const StageParameters& p = s.p;
+  Pose pose;
+  static_cast<RigidPose&>(pose) = rigid;
+  pose.verification = verifyBothWays(source, rigid.R, rigid.t, times, 1);
+  return pose;
+}
+
+void record(Hypothesis& h, const Pose& pose)
+{
+  h.rotation = pose.R;
+  h.translation = pose.t;
+  h.verification = pose.verification;
+}
+
+/** Translation of the (rotated) \a points onto \a target: the occupancy correlation,
+ *  whitened by \a whitening, at the sub-voxel peak. With \a volume the plain
+ *  correlation is kept for the covariance and the peak's sidelobe score computed. */
+SpatialCorrelationResult
+correlateTranslation(const SpatialSpectrum& target, const Eigen::Matrix3Xd& points,
+                     double whitening, int num_threads, StageTimes& times,
+                     SpatialVolume* volume = nullptr, double* source_energy = nullptr)
+{
+  const auto start = Clock::now();
+  SpatialSpectrum S = occupancySpectrum(target.grid, points, num_threads);
+  if (source_energy)
+    *source_energy = spectrumEnergy(S);
+  SpatialVolume plain;
+  if (volume && whitening > 0.0)
+    plain = correlateSpectra(target, S, num_threads);
+  SpatialVolume C =
+      correlateSpectraWhitened(target, std::move(S), whitening, num_threads);
+  const SpatialCorrelationResult shift = findSpatialPeak(
+      C, SpatialPeakRefinement::kGaussian, num_threads, volume != nullptr);
+  if (volume)
+    *volume = whitening > 0.0 ? std::move(plain) : std::move(C);
+  times.translation += msSince(start);
+  return shift;
+}
+
+/** Rotation hypotheses: the distinct peaks of the range correlation and of the
+ *  orientation histograms' correlation; the next kSpareOrientationPeaks distinct peaks
+ *  of the latter into \a spare. */
+std::vector<Hypothesis> rotationHypotheses(const SourceContext& source,
+                                           const So3CorrelationGrid& correlation,
+                                           double source_norm, StageTimes& times,
+                                           std::vector<Hypothesis>& spare)
+{
+  const StageParameters& params = source.params;
+  const TargetModel& target = source.target;
   const auto start = Clock::now();
   std::vector<So3GridIndex> peaks;
-  if (p.rotation_candidates > 1)
-    peaks =
-        distinctPeaks(C, p.rotation_candidates, kHypothesisSeparation, p.num_threads);
+  if (params.rotation_candidates > 1)
+    peaks = distinctPeaks(correlation, params.rotation_candidates,
+                          kHypothesisSeparation, params.num_threads);
   if (peaks.empty())
-    peaks.push_back(C.argmax(p.num_threads));
-  e.so3_ms += msSince(start); // the peaks are part of the rotation search
-  std::vector<RotationHypothesis> out;
+    peaks.push_back(correlation.argmax(params.num_threads));
+  times.so3 += msSince(start);
+  std::vector<Hypothesis> out;
   for (const So3GridIndex& peak : peaks) {
-    RotationHypothesis h;
-    h.rotation = rotationFromEuler(gridEuler(peak, p.bandwidth));
-    h.rotation_score = C(peak) / (s.target.spherical_norm * h_norm);
+    Hypothesis h;
+    h.rotation = rotationFromEuler(gridEuler(peak, params.bandwidth));
+    h.rotation_score = correlation(peak) / (target.spherical_norm * source_norm);
     out.push_back(h);
   }
-  if (!p.sensor_centered || p.orientation_candidates == 0 ||
-      s.target.orientation.size() == 0)
+  if (!params.sensor_centered || params.orientation_candidates == 0 ||
+      target.orientation.size() == 0)
     return out;
-  const auto t = Clock::now();
+  const auto begin = Clock::now();
+  const int bandwidth = params.orientation_bandwidth;
   const SphericalSpectrum O =
-      orientationSpectrum(s.patches, p.orientation_bandwidth, p.num_threads);
-  const So3CorrelationGrid Co = So3Correlator::instance(p.orientation_bandwidth)
-                                    ->correlate(s.target.orientation, O, p.num_threads);
+      orientationSpectrum(source.patches, bandwidth, params.num_threads);
+  const So3CorrelationGrid Co = So3Correlator::instance(bandwidth)->correlate(
+      target.orientation, O, params.num_threads);
   const double norm =
-      std::sqrt(spectrumSquaredNorm(s.target.orientation) * spectrumSquaredNorm(O));
+      std::sqrt(spectrumSquaredNorm(target.orientation) * spectrumSquaredNorm(O));
   const std::vector<So3GridIndex> orientation_peaks =
-      distinctPeaks(Co, p.orientation_candidates + kSpareOrientationPeaks,
-                    kHypothesisSeparation, p.num_threads);
+      distinctPeaks(Co, params.orientation_candidates + kSpareOrientationPeaks,
+                    kHypothesisSeparation, params.num_threads);
   for (std::size_t k = 0; k < orientation_peaks.size(); ++k) {
-    const So3GridIndex& peak = orientation_peaks[k];
-    RotationHypothesis h;
-    h.rotation = rotationFromEuler(gridEuler(peak, p.orientation_bandwidth));
-    h.rotation_score = norm > 0.0 ? Co(peak) / norm : 0.0;
+    Hypothesis h;
+    h.rotation = rotationFromEuler(gridEuler(orientation_peaks[k], bandwidth));
+    h.rotation_score = norm > 0.0 ? Co(orientation_peaks[k]) / norm : 0.0;
     h.from_orientation = true;
-    (static_cast<int>(k) < p.orientation_candidates ? out : spare).push_back(h);
+    (static_cast<int>(k) < params.orientation_candidates ? out : spare).push_back(h);
   }
-  e.orientation_ms += msSince(t);
+  times.orientation += msSince(begin);
   return out;
 }
 
-/** Whether verification \a a ranks above \a b: one with at least \a support of
- *  inliers above one without (a pose that matches far less than another has little
- *  support, however little it violates: noise puts the right pose's samples in space
- * the target saw through, and a pose whose samples land where the target saw nothing
- *  violates least), then by rank() (a wrong pose can match more samples than the right
- *  one, e.g. a 180 deg flip of a symmetric yard, and still see through the target's
- *  surfaces). The verification limits take no part: they judge the final pose, while a
- *  pass-1 pose is a voxel and a grid cell off, its constraint and free-space shares not
- *  yet those of the refined pose (benchmarks.md 9.18). */
-bool ranksAbove(const PoseVerification& a, const PoseVerification& b, double support)
+/** Whether \a a ranks above \a b: one with at least \a support of inliers above one
+ *  without (however little that one violates), then by rank. The limits take no part:
+ *  a pass-1 pose is a voxel and a grid cell off, its figures not yet final. */
+bool ranksAbove(const Verification& a, const Verification& b, double support)
 {
   const bool a_supported = a.inlier_fraction >= support;
   const bool b_supported = b.inlier_fraction >= support;
   if (a_supported != b_supported)
     return a_supported;
-  return rank(a) > rank(b);
+  return a.rank > b.rank;
 }
 
-/** Whether a refined pose replaces the current one: when the poses are ranked by
- *  verification, if it ranks no worse; otherwise always (the passes' own stop rule
- *  decides). */
-bool accept(const Pose& next, const Pose& current)
+/** Whether \a next replaces \a current: when poses are ranked by verification, if it
+ *  ranks higher; otherwise always (the passes' own stop rule decides). */
+bool improves(const Pose& next, const Pose& current)
 {
-  return !current.verifiable || rank(next.v) > rank(current.v);
+  return !current.verifiable || next.verification.rank > current.verification.rank;
 }
 
 /** Whether verification can tell poses apart: about sensor origins, with surfaces
- *  thinner than a third of the verification radius in both clouds (noise thicker than
- *  that lets wrong poses put as many samples within the radius as the right one). */
-bool canVerify(const SourceContext& s)
+ *  thinner than kMaxThickness verification radii in both clouds. */
+bool canVerify(const SourceContext& source)
 {
-  const double limit = kMaxThickness * s.target.index.radius();
-  return s.p.sensor_centered && s.patches.thickness <= limit &&
-         s.target.thickness <= limit;
+  const double limit = kMaxThickness * source.target.index.radius();
+  return source.params.sensor_centered && source.patches.thickness <= limit &&
+         source.target.thickness <= limit;
 }
 
-/** \a pose refined by refinePoseWithin (within the hypothesis separation and two
- *  coarse voxels; its first step against the target's reach index), kept when it
- *  verifies better. */
-Pose polish(const SourceContext& s, const Pose& pose, PhaserEstimate& e,
-            int num_threads)
+/** \a pose refined on the verification samples (refinePoseWithin: within the
+ *  hypothesis separation and two coarse voxels, its first step against the target's
+ *  reach index), kept when it ranks higher. */
+Pose refineOnSamples(const SourceContext& source, const Pose& pose, StageTimes& times,
+                     int num_threads)
 {
   const auto start = Clock::now();
-  const RigidPose refined =
-      refinePoseWithin(s.target.index, s.samples, {pose.R, pose.t}, kPolishIterations,
-                       kHypothesisSeparation, 2.0 * s.target.coarse.grid.voxel_size,
-                       &s.target.reach_index);
-  e.verification_ms += msSince(start);
+  const TargetModel& target = source.target;
+  const RigidPose refined = refinePoseWithin(
+      target.index, source.samples, pose, kPolishIterations, kHypothesisSeparation,
+      2.0 * target.coarse.grid.voxel_size, &target.reach_index);
+  times.verification += msSince(start);
   if (refined.R == pose.R && refined.t == pose.t)
     return pose; // refused or nothing to climb: verifies as before
   Pose next = pose;
-  next.R = refined.R;
-  next.t = refined.t;
-  next.v = verify(s, next.R, next.t, e, num_threads);
-  return rank(next.v) > rank(pose.v) ? next : pose;
+  static_cast<RigidPose&>(next) = refined;
+  next.verification = verifyBothWays(source, next.R, next.t, times, num_threads);
+  return next.verification.rank > pose.verification.rank ? next : pose;
 }
 
-/** The residual rotation's correlation grid from the current viewpoint: only rotations
- *  that tilt less than kResidualTilt (any yaw). */
+/** The residual rotation's correlation grid from the viewpoint of spectrum \a H: only
+ *  rotations that tilt less than kResidualTilt (any yaw). */
 std::shared_ptr<So3CorrelationGrid>
-residualGrid(const SourceContext& s, const SphericalSpectrum& H, PhaserEstimate& e)
+residualGrid(const SourceContext& source, const SphericalSpectrum& H, StageTimes& times)
 {
   const auto start = Clock::now();
-  const int rows = betaRowsForTilt(s.p.bandwidth, kResidualTilt);
+  const StageParameters& params = source.params;
+  const int rows = betaRowsForTilt(params.bandwidth, kResidualTilt);
   auto C = std::make_shared<So3CorrelationGrid>(
-      So3Correlator::instance(s.p.bandwidth)
-          ->correlate(s.target.spherical, H, s.p.num_threads, rows));
-  e.so3_ms += msSince(start);
+      So3Correlator::instance(params.bandwidth)
+          ->correlate(source.target.spherical, H, params.num_threads, rows));
+  times.so3 += msSince(start);
   return C;
 }
 
-/** Adds the wall time \a wall of a region of tasks to e's translation and verification
+/** Adds the wall time \a wall of a region of tasks to the translation and verification
  *  times, split in the proportions of the tasks' own times. */
-void splitWallTime(const std::vector<PhaserEstimate>& times, double wall,
-                   PhaserEstimate& e)
+void splitWallTime(const std::vector<StageTimes>& task_times, double wall,
+                   StageTimes& times)
 {
   double translation = 0.0, verification = 0.0;
-  for (const PhaserEstimate& t : times) {
-    translation += t.translation_ms;
-    verification += t.verification_ms;
+  for (const StageTimes& task : task_times) {
+    translation += task.translation;
+    verification += task.verification;
   }
   const double busy = translation + verification;
-  e.translation_ms += busy > 0.0 ? wall * translation / busy : 0.0;
-  e.verification_ms += busy > 0.0 ? wall * verification / busy : 0.0;
+  times.translation += busy > 0.0 ? wall * translation / busy : 0.0;
+  times.verification += busy > 0.0 ? wall * verification / busy : 0.0;
 }
 
-/** Every hypothesis from index \a first on through the coarse translation search and
- *  verification, then (where poses can be verified) the polish, into e.hypotheses and
- *  \a v (resized to hold them): before the polish the right hypothesis often ranks low
- *  (a voxel and a grid cell off, its samples fall in free space), so every one is
- *  polished. Each hypothesis is a one-thread task (runTasks), so its result does not
- *  depend on the thread count. The stage times are the wall time of the regions, split
- *  in the tasks' proportions. */
-void translateHypotheses(const SourceContext& s, PhaserEstimate& e,
-                         std::vector<PoseVerification>& v, std::size_t first = 0)
+/** Every hypothesis from index \a first on through the coarse translation search,
+ *  verification and (where poses can be verified) the local refinement: before it the
+ *  right one often ranks low. One-thread tasks: results independent of thread count. */
+void translateHypotheses(const SourceContext& source,
+                         std::vector<Hypothesis>& hypotheses, StageTimes& times,
+                         std::size_t first = 0)
 {
-  const std::size_t n = e.hypotheses.size() - first;
-  PhaserParameters single = s.p;
-  single.num_threads = 1;
-  std::vector<PhaserEstimate> times(n);
-  std::vector<Pose> poses(n);
-  const bool polished = canVerify(s);
+  const std::size_t n = hypotheses.size() - first;
+  std::vector<StageTimes> task_times(n);
+  const bool refined = canVerify(source);
   const auto start = Clock::now();
-  runTasks(static_cast<int>(n), s.p.num_threads, [&](int k) {
-    RotationHypothesis& h = e.hypotheses[first + static_cast<std::size_t>(k)];
-    Pose& pose = poses[static_cast<std::size_t>(k)];
-    const SpatialCorrelationResult shift = shiftOf(
-        s.target.coarse, h.rotation * s.coarse_points, s.p.whitening, single, times[k]);
+  runTasks(static_cast<int>(n), source.params.num_threads, [&](int k) {
+    Hypothesis& h = hypotheses[first + static_cast<std::size_t>(k)];
+    StageTimes& task = task_times[static_cast<std::size_t>(k)];
+    const SpatialCorrelationResult shift =
+        correlateTranslation(source.target.coarse, h.rotation * source.coarse_points,
+                             source.params.whitening, 1, task);
     h.overlap = shift.peak_value;
-    pose.R = h.rotation;
-    pose.t = shift.shift;
-    pose.v = verify(s, pose.R, pose.t, times[k], 1);
-    if (polished)
-      pose = polish(s, pose, times[k], 1);
+    const Pose pose = verifiedPose(source, {h.rotation, shift.shift}, task);
+    record(h, refined ? refineOnSamples(source, pose, task, 1) : pose);
   });
-  v.resize(first + n);
-  for (std::size_t k = 0; k < n; ++k) {
-    e.hypotheses[first + k].rotation = poses[k].R;
-    e.hypotheses[first + k].translation = poses[k].t;
-    v[first + k] = poses[k].v;
-  }
-  splitWallTime(times, msSince(start), e);
+  splitWallTime(task_times, msSince(start), times);
 }
 
-/** When the pass-1 choice would not be claimed (globalSearch): the next
- * kExtraTranslationPeaks distinct peaks (kPeakSeparation coarse voxels apart) of every
- * hypothesis's coarse translation correlation, at its grid rotation in \a rotations,
- * each a hypothesis of its own, verified and polished as in pass 1 and appended to
- * e.hypotheses and \a v. On partial views a rotation near the truth can have its
- * highest translation peak meters off (benchmarks.md 9.10). */
-void widenHypotheses(const SourceContext& s,
-                     const std::vector<Eigen::Matrix3d>& rotations, PhaserEstimate& e,
-                     std::vector<PoseVerification>& v)
+/** The next kExtraTranslationPeaks distinct peaks of the coarse translation
+ *  correlation at each of the grid \a rotations as hypotheses, verified and refined as
+ *  in pass 1: on partial views the right rotation's highest peak can be meters off. */
+void addTranslationPeaks(const SourceContext& source,
+                         const std::vector<Eigen::Matrix3d>& rotations,
+                         std::vector<Hypothesis>& hypotheses, StageTimes& times)
 {
   const std::size_t n = rotations.size();
-  std::vector<PhaserEstimate> times(n);
+  std::vector<StageTimes> task_times(n);
   std::vector<std::vector<Pose>> extra(n);
   const auto start = Clock::now();
-  runTasks(static_cast<int>(n), s.p.num_threads, [&](int k) {
+  const TargetModel& target = source.target;
+  runTasks(static_cast<int>(n), source.params.num_threads, [&](int k) {
     const auto begin = Clock::now();
     const Eigen::Matrix3d& R = rotations[static_cast<std::size_t>(k)];
-    PhaserEstimate& time = times[static_cast<std::size_t>(k)];
-    // The pass-1 correlation again: keeping every pass-1 volume (16 MB each) for the
-    // few aligns that widen would cost more than recomputing it there.
+    StageTimes& task = task_times[static_cast<std::size_t>(k)];
+    // The pass-1 correlation again: cheaper than keeping every volume (16 MB each).
     const SpatialVolume C = correlateSpectraWhitened(
-        s.target.coarse,
-        occupancySpectrum(s.target.coarse.grid, R * s.coarse_points, 1), s.p.whitening,
-        1);
+        target.coarse,
+        occupancySpectrum(target.coarse.grid, R * source.coarse_points, 1),
+        source.params.whitening, 1);
     std::vector<SpatialCorrelationResult> peaks =
         findDistinctSpatialPeaks(C, 1 + kExtraTranslationPeaks, kPeakSeparation);
-    time.translation_ms += msSince(begin);
-    for (std::size_t j = 1; j < peaks.size(); ++j) {
-      Pose pose;
-      pose.R = R;
-      pose.t = peaks[j].shift;
-      pose.v = verify(s, pose.R, pose.t, time, 1);
-      extra[static_cast<std::size_t>(k)].push_back(polish(s, pose, time, 1));
-    }
+    task.translation += msSince(begin);
+    for (std::size_t j = 1; j < peaks.size(); ++j)
+      extra[static_cast<std::size_t>(k)].push_back(refineOnSamples(
+          source, verifiedPose(source, {R, peaks[j].shift}, task), task, 1));
   });
   for (std::size_t k = 0; k < n; ++k)
     for (const Pose& pose : extra[k]) {
-      RotationHypothesis h = e.hypotheses[k];
-      h.rotation = pose.R;
-      h.translation = pose.t;
-      e.hypotheses.push_back(h);
-      v.push_back(pose.v);
+      Hypothesis h = hypotheses[k];
+      record(h, pose);
+      hypotheses.push_back(h);
     }
-  splitWallTime(times, msSince(start), e);
+  splitWallTime(task_times, msSince(start), times);
 }
 
-/** The hypotheses' verification figures from \a v, and the pass-1 pose: about sensor
- *  origins, when at least one hypothesis puts kMinRankingInliers of the samples on the
- *  target, the best verified one; otherwise the range peak whose rotated source
- *  overlaps the target most. */
-Pose choose(const SourceContext& s, const std::vector<PoseVerification>& v,
-            PhaserEstimate& e)
+/** The pass-1 pose: about sensor origins, when at least one hypothesis puts
+ *  kMinRankingInliers of the samples on the target, the best verified one; otherwise
+ *  the range peak whose rotated source overlaps the target most. */
+void chooseHypothesis(const SourceContext& source, GlobalSearch& search)
 {
+  const std::vector<Hypothesis>& hypotheses = search.hypotheses;
   bool verifiable = false;
   double most_inliers = 0.0;
-  for (std::size_t k = 0; k < e.hypotheses.size(); ++k) {
-    RotationHypothesis& h = e.hypotheses[k];
-    h.inlier_fraction = v[k].inlier_fraction;
-    h.verification_score = v[k].score;
-    h.verification_rank = rank(v[k]);
-    h.free_space_violation = v[k].free_space_violation;
-    h.reverse_free_space_violation = v[k].reverse_free_space_violation;
-    verifiable = verifiable || v[k].inlier_fraction >= kMinRankingInliers;
-    most_inliers = std::max(most_inliers, v[k].inlier_fraction);
+  for (const Hypothesis& h : hypotheses) {
+    verifiable = verifiable || h.verification.inlier_fraction >= kMinRankingInliers;
+    most_inliers = std::max(most_inliers, h.verification.inlier_fraction);
   }
-  verifiable = verifiable && canVerify(s);
+  verifiable = verifiable && canVerify(source);
   std::size_t best = 0;
-  for (std::size_t k = 1; k < e.hypotheses.size(); ++k) {
-    const RotationHypothesis& h = e.hypotheses[k];
+  for (std::size_t k = 1; k < hypotheses.size(); ++k) {
+    const Hypothesis& h = hypotheses[k];
     const bool better =
-        verifiable ? ranksAbove(v[k], v[best], kMinSupport * most_inliers)
-                   : !h.from_orientation && h.overlap > e.hypotheses[best].overlap;
+        verifiable ? ranksAbove(h.verification, hypotheses[best].verification,
+                                kMinSupport * most_inliers)
+                   : !h.from_orientation && h.overlap > hypotheses[best].overlap;
     if (better)
       best = k;
   }
-  e.chosen_hypothesis = static_cast<int>(best);
-  Pose pose;
-  pose.R = e.hypotheses[best].rotation;
-  pose.t = e.hypotheses[best].translation;
-  pose.v = v[best];
-  pose.verifiable = verifiable;
-  return pose;
+  search.chosen = static_cast<int>(best);
+  search.pose = Pose();
+  search.pose.R = hypotheses[best].rotation;
+  search.pose.t = hypotheses[best].translation;
+  search.pose.verification = hypotheses[best].verification;
+  search.pose.verifiable = verifiable;
+}
+
+/** Newton refinement of \a R on C, then with normalized_refinement on the
+ *  energy-normalized correlation near that maximum (plain C leans towards equal sensor
+ *  tilt); the exact C at the result into \a value. */
+Eigen::Matrix3d refineResidualRotation(const SourceContext& source,
+                                       const Viewpoint& view, const Eigen::Matrix3d& R,
+                                       double& value, StageTimes& times)
+{
+  const auto start = Clock::now();
+  const StageParameters& params = source.params;
+  const TargetModel& target = source.target;
+  RefinedRotation refined =
+      refineRotation(target.spherical, view.H, R, params.bandwidth,
+                     params.refinement_iterations, params.num_threads);
+  if (params.normalized_refinement)
+    refined = refineRotation(
+        target.spherical, view.H, refined.rotation, params.bandwidth,
+        params.refinement_iterations, params.num_threads, &target.spherical_support,
+        &view.support, kNormalizedRefinementRadius * 64.0 / params.bandwidth);
+  value = refined.value;
+  times.refinement += msSince(start);
+  return refined.rotation;
+}
+
+/** Grid samples around \a peak of \a C, their offsets from it applied on the left of
+ *  \a estimate, weighted by their correlation above the lowest of the block. */
+void rotationSamples(const So3CorrelationGrid& C, const So3GridIndex& peak,
+                     const Eigen::Matrix3d& estimate, PhaserDiagnostics& diagnostics)
+{
+  const std::vector<RotationSample> block = rotationNeighborhood(C, peak, 1);
+  const Eigen::Matrix3d R_peak =
+      rotationFromEuler(gridEuler(peak, C.outputBandwidth()));
+  double lowest = block.front().value;
+  for (const RotationSample& sample : block)
+    lowest = std::min(lowest, sample.value);
+  diagnostics.rotation_samples.clear();
+  diagnostics.rotation_weights.clear();
+  for (const RotationSample& sample : block) {
+    const Eigen::Quaterniond q(sample.rotation * R_peak.transpose() * estimate);
+    diagnostics.rotation_samples.emplace_back(q.w(), q.x(), q.y(), q.z());
+    diagnostics.rotation_weights.push_back(sample.value - lowest);
+  }
+}
+
+/** The source seen from \a pose: as a refused pass measured it, or measured now; with
+ *  the residual grid and its peak in \a pose when no accepted pass left them. */
+std::shared_ptr<const Viewpoint> finalViewpoint(const SourceContext& source, Pose& pose,
+                                                StageTimes& times)
+{
+  const StageParameters& params = source.params;
+  std::shared_ptr<const Viewpoint> view = pose.view;
+  if (!view) {
+    auto measured = std::make_shared<Viewpoint>();
+    measured->H = sourceSpectrum(
+        (pose.R * source.points).colwise() + pose.t, source.channels, params, times,
+        params.normalized_refinement ? &measured->support : nullptr);
+    view = std::move(measured);
+  }
+  if (pose.grid)
+    return view;
+  if (view->grid) {
+    pose.grid = view->grid;
+    pose.peak = view->peak;
+  } else {
+    pose.grid = residualGrid(source, view->H, times);
+    // A refined pose is within a grid cell or two: its peak is the one near it.
+    pose.peak = pose.verifiable ? pose.grid->argmaxNearIdentity(kHypothesisSeparation)
+                                : pose.grid->argmax(params.num_threads);
+  }
+  return view;
+}
+
+/** The shift of \a next on the final grid (coarse after one pass, else fine) into
+ *  \a next, with its verification, and the translation figures into \a result;
+ *  false when a wrong pose moved the source out of the grid (nothing measured). */
+bool finalShift(const SourceContext& source, Pose& next, PhaserResult& result)
+{
+  const TargetModel& target = source.target;
+  const StageParameters& params = source.params;
+  const bool single = params.passes == 1;
+  const SpatialSpectrum& grid = single ? target.coarse : target.fine;
+  const double grid_energy = single ? target.coarse_energy : target.fine_energy;
+  StageTimes& times = result.diagnostics.times;
+  SpatialVolume volume;
+  double energy = 0.0;
+  const SpatialCorrelationResult shift = correlateTranslation(
+      grid, (next.R * source.points).colwise() + next.t,
+      single ? params.whitening : 0.0, params.num_threads, times, &volume, &energy);
+  if (!(energy > 0.0))
+    return false;
+  next.t += shift.shift;
+  next.verification = verifyBothWays(source, next.R, next.t, times);
+  result.diagnostics.translation_score = shift.score;
+  const double peak = volume.values.empty()
+                          ? 0.0
+                          : volume.values[volume.grid.flatIndex(
+                                shift.index.x(), shift.index.y(), shift.index.z())];
+  const double energy_product = grid_energy * energy;
+  result.diagnostics.normalized_overlap =
+      energy_product > 0.0 ? peak / std::sqrt(energy_product) : 0.0;
+  result.translation_covariance =
+      translationCovariance(volume, shift.index, energy_product);
+  return true;
 }
 
 } // namespace
 
-/** Pass 1: every hypothesis through the coarse translation search and verification,
- *  then choose(). Where poses can be verified and the chosen one would not be claimed
- *  (it misses the limits, or a distinct hypothesis ranks about as high: standsOut), the
- *  spare orientation peaks become hypotheses too, then widenHypotheses, and choose()
- *  again. Otherwise (object scans, or clouds so noisy or sparse that no pose verifies,
- *  e.g. 1 m of noise at 40 dB PSNR) verification cannot rank them and the range peak
- *  that overlaps most wins, as the orientation histograms are as unreliable as the
- *  normals. */
-Pose globalSearch(const SourceContext& s, const So3CorrelationGrid& C, double h_norm,
-                  PhaserEstimate& e)
+/** Where poses can be verified and the chosen one would not be claimed (it misses the
+ *  limits, or a distinct hypothesis ranks about as high), the spare orientation peaks
+ *  and more translation peaks become hypotheses too, and the choice is made again. */
+GlobalSearch globalSearch(const SourceContext& source,
+                          const So3CorrelationGrid& correlation, double source_norm,
+                          StageTimes& times)
 {
-  std::vector<RotationHypothesis> spare;
-  e.hypotheses = rotationHypotheses(s, C, h_norm, e, spare);
+  GlobalSearch search;
+  std::vector<Hypothesis> spare;
+  search.hypotheses =
+      rotationHypotheses(source, correlation, source_norm, times, spare);
   std::vector<Eigen::Matrix3d> rotations;
-  for (const RotationHypothesis& h : e.hypotheses)
-    rotations.push_back(h.rotation); // before the polish moves them
-  std::vector<PoseVerification> v;
-  translateHypotheses(s, e, v);
-  Pose pose = choose(s, v, e);
+  for (const Hypothesis& h : search.hypotheses)
+    rotations.push_back(h.rotation); // before the refinement moves them
+  translateHypotheses(source, search.hypotheses, times);
+  chooseHypothesis(source, search);
   const auto start = Clock::now();
-  const bool widen = canVerify(s) && (!meetsLimits(pose.v, s.p) ||
-                                      !standsOut(s, pose, e.hypotheses).stands_out);
-  e.verification_ms += msSince(start);
+  const bool widen = canVerify(source) &&
+                     (!meetsLimits(search.pose.verification, source.params) ||
+                      !standsOut(source, search.pose, search.hypotheses).stands_out);
+  times.verification += msSince(start);
   if (widen) {
-    const std::size_t first = e.hypotheses.size();
-    e.hypotheses.insert(e.hypotheses.end(), spare.begin(), spare.end());
-    translateHypotheses(s, e, v, first);
-    widenHypotheses(s, rotations, e, v);
-    pose = choose(s, v, e);
+    const std::size_t first = search.hypotheses.size();
+    search.hypotheses.insert(search.hypotheses.end(), spare.begin(), spare.end());
+    translateHypotheses(source, search.hypotheses, times, first);
+    addTranslationPeaks(source, rotations, search.hypotheses, times);
+    chooseHypothesis(source, search);
   }
-  e.passes = 1;
-  return pose;
+  return search;
 }
 
-/** Later passes: the source, moved by the estimate, is seen from the target's center,
- *  so its range function no longer suffers the parallax of the source's viewpoint; the
- *  residual rotation (grid argmax among the rotations that tilt less than
- *  kResidualTilt) and a fine-grid shift are composed with the
- *  estimate, kept only while verification does not get worse. A pass whose shift
- *  update is below a quarter of a fine voxel started from the right viewpoint: stop. */
-Pose reprojectionPasses(const SourceContext& s, Pose pose, PhaserEstimate& e)
+/** Each pass sees the source, moved by the estimate, from the target's center (free of
+ *  its own viewpoint's parallax) and composes the residual rotation (tilt below
+ *  kResidualTilt) and a fine-grid shift with the estimate. A shift below a quarter of
+ *  a fine voxel means the pass started from the right viewpoint: stop. */
+Pose reprojectionPasses(const SourceContext& source, Pose pose, int& passes,
+                        StageTimes& times)
 {
-  const double settled = 0.25 * s.target.fine.grid.voxel_size;
-  for (int pass = 1; pass < s.p.passes; ++pass) {
-    // With the support the final stage needs: a refused pass hands it over.
+  const StageParameters& params = source.params;
+  const double settled = 0.25 * source.target.fine.grid.voxel_size;
+  for (int pass = 1; pass < params.passes; ++pass) {
+    // With the support the final refinement needs: a refused pass hands it over.
     auto view = std::make_shared<Viewpoint>();
-    view->H = sourceSpectrum((pose.R * s.points).colwise() + pose.t, s.channels, s.p, e,
-                             s.p.normalized_refinement ? &view->support : nullptr);
-    const std::shared_ptr<So3CorrelationGrid> C = residualGrid(s, view->H, e);
+    view->H = sourceSpectrum((pose.R * source.points).colwise() + pose.t,
+                             source.channels, params, times,
+                             params.normalized_refinement ? &view->support : nullptr);
+    const std::shared_ptr<So3CorrelationGrid> C = residualGrid(source, view->H, times);
     Pose next;
     next.verifiable = pose.verifiable;
     next.peak = pose.verifiable ? C->argmaxNearIdentity(kHypothesisSeparation)
-                                : C->argmax(s.p.num_threads);
+                                : C->argmax(params.num_threads);
     next.grid = C;
-    const Eigen::Matrix3d dR = rotationFromEuler(gridEuler(next.peak, s.p.bandwidth));
+    const Eigen::Matrix3d dR =
+        rotationFromEuler(gridEuler(next.peak, params.bandwidth));
     next.R = dR * pose.R;
     next.t = dR * pose.t;
     const Eigen::Vector3d shift =
-        shiftOf(s.target.fine, (next.R * s.points).colwise() + next.t, 0.0, s.p, e)
+        correlateTranslation(source.target.fine,
+                             (next.R * source.points).colwise() + next.t, 0.0,
+                             params.num_threads, times)
             .shift;
     next.t += shift;
-    next.v = verify(s, next.R, next.t, e);
-    if (!accept(next, pose)) {
+    next.verification = verifyBothWays(source, next.R, next.t, times);
+    if (!improves(next, pose)) {
       view->grid = C;
       view->peak = next.peak;
       pose.view = std::move(view);
       break;
     }
     pose = next;
-    e.passes = pass + 1;
+    passes = pass + 1;
     if (shift.norm() < settled)
       break;
   }
   return pose;
 }
 
-/** Finally the residual rotation from the final viewpoint, Newton-refined from the
- *  identity, and the matching shift, kept when verification does not get worse. The
- *  spread of the last rotation grid around its peak and of the last 3-D correlation
- *  around its peak describe the uncertainty. */
-void finalStage(const SourceContext& s, Pose pose, PhaserEstimate& e)
+/** The residual rotation from the final viewpoint is Newton-refined from the identity
+ *  after an accepted pass, else from the residual grid's peak. */
+Pose refineFinalPose(const SourceContext& source, Pose pose, PhaserResult& result)
 {
-  const TargetModel& target = s.target;
-  const StageParameters& p = s.p;
-  // The source from this viewpoint, as a refused pass measured it, or measured now.
-  std::shared_ptr<const Viewpoint> view = pose.view;
-  if (!view) {
-    auto measured = std::make_shared<Viewpoint>();
-    measured->H =
-        sourceSpectrum((pose.R * s.points).colwise() + pose.t, s.channels, p, e,
-                       p.normalized_refinement ? &measured->support : nullptr);
-    view = std::move(measured);
-  }
-  const SphericalSpectrum& H = view->H;
-  const SphericalSupport& support = view->support;
-  // After an accepted pass the residual is within the grid spacing: refine from the
-  // identity; else search the residual grid (tilt below kResidualTilt) first.
-  Eigen::Matrix3d start = Eigen::Matrix3d::Identity();
-  if (!pose.grid) {
-    if (view->grid) {
-      pose.grid = view->grid;
-      pose.peak = view->peak;
-    } else {
-      pose.grid = residualGrid(s, H, e);
-      // A polished pose is within a grid cell or two: its peak is the one near it.
-      pose.peak = pose.verifiable ? pose.grid->argmaxNearIdentity(kHypothesisSeparation)
-                                  : pose.grid->argmax(p.num_threads);
-    }
-    start = rotationFromEuler(gridEuler(pose.peak, p.bandwidth));
-  }
+  const StageParameters& params = source.params;
+  StageTimes& times = result.diagnostics.times;
+  const bool after_pass = pose.grid != nullptr;
+  const std::shared_ptr<const Viewpoint> view = finalViewpoint(source, pose, times);
+  const Eigen::Matrix3d start =
+      after_pass ? Eigen::Matrix3d::Identity()
+                 : rotationFromEuler(gridEuler(pose.peak, params.bandwidth));
   // Held here: pose (and its grid) may be replaced below.
   const std::shared_ptr<const So3CorrelationGrid> rotation_grid = pose.grid;
-  const So3CorrelationGrid& C = *rotation_grid;
   const So3GridIndex peak = pose.peak;
   double value = 0.0;
-  const Eigen::Matrix3d dR = refine(target, H, support, start, p, value, e);
-  const bool single = p.passes == 1;
-  const SpatialSpectrum& grid = single ? target.coarse : target.fine;
-  const double grid_energy = single ? target.coarse_energy : target.fine_energy;
+  const Eigen::Matrix3d dR = refineResidualRotation(source, *view, start, value, times);
   Pose next;
   next.verifiable = pose.verifiable;
   next.R = dR * pose.R;
   next.t = dR * pose.t;
-  SpatialVolume volume;
-  double energy = 0.0;
-  const SpatialCorrelationResult shift =
-      shiftOf(grid, (next.R * s.points).colwise() + next.t, single ? p.whitening : 0.0,
-              p, e, &volume, &energy);
-  // A wrong pose can move the source out of the fine grid: then nothing was measured.
-  const bool measured = energy > 0.0;
-  if (measured) {
-    next.t += shift.shift;
-    next.v = verify(s, next.R, next.t, e);
-    e.translation_score = shift.score;
-    e.normalized_overlap =
-        normalizedPeak(volume.values.empty() ? 0.0 : volumeAt(volume, shift.index),
-                       grid_energy * energy);
-    e.translation_covariance =
-        translationCovariance(volume, shift.index, grid_energy * energy);
-  }
-  e.rotation_score =
-      value / (target.spherical_norm * std::sqrt(spectrumSquaredNorm(H)));
-  if (measured && accept(next, pose))
+  const bool measured = finalShift(source, next, result);
+  result.diagnostics.rotation_score =
+      value / (source.target.spherical_norm * std::sqrt(spectrumSquaredNorm(view->H)));
+  if (measured && improves(next, pose))
     pose = next;
   if (pose.verifiable)
-    pose = polish(s, pose, e, p.num_threads);
-  rotationSamples(C, peak, pose.R, e);
-  verdict(s, pose, e);
+    pose = refineOnSamples(source, pose, times, params.num_threads);
+  rotationSamples(*rotation_grid, peak, pose.R, result.diagnostics);
+  return pose;
 }
 
 } // namespace detail

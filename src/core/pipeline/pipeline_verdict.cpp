@@ -2,9 +2,9 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * The verdict on a pose about sensor origins: how verified poses rank, the limits a
- * right pose meets, and whether the final pose stands out from every distinct
- * hypothesis by more than the choice of samples explains.
+ * The verdict on a pose: how verified poses rank, the limits a right pose meets, and
+ * whether the final pose stands out from every distinct hypothesis by more than the
+ * choice of samples explains.
  */
 #include "pipeline/pipeline_internal.h"
 
@@ -18,51 +18,54 @@
 namespace pcl::phaser {
 namespace detail {
 
-/** How a verified pose ranks: its closeness-weighted inlier share less a multiple of
- *  its free-space violations, of the source's samples in space the target saw through
- *  and of the target's samples in space the source saw through. A violation is strong
- *  evidence against the pose and each sensor's is separate evidence; a sample without
- *  a target neighbor is weak (occlusion, partial overlap), hence the factor. */
-double rank(const PoseVerification& v)
+/** A violation is strong evidence against the pose and each sensor's is separate
+ *  evidence; a sample without a target neighbor is weak (occlusion, partial overlap),
+ *  hence the weight. */
+Verification ranked(const PoseVerification& measured)
 {
-  return v.score -
-         kViolationWeight * (v.free_space_violation + v.reverse_free_space_violation);
+  Verification out;
+  out.inlier_fraction = measured.inlier_fraction;
+  out.score = measured.score;
+  out.free_space_violation = measured.free_space_violation;
+  out.reverse_free_space_violation = measured.reverse_free_space_violation;
+  out.constraint = measured.constraint;
+  out.rank =
+      measured.score - kViolationWeight * (measured.free_space_violation +
+                                           measured.reverse_free_space_violation);
+  return out;
 }
 
-/** Whether \a v meets the verification limits of \a p (inliers, constraint and both
- *  free-space violations): a pose that could be declared right. */
-bool meetsLimits(const PoseVerification& v, const PhaserParameters& p)
+bool meetsLimits(const Verification& verification, const PhaserParameters& params)
 {
-  return v.inlier_fraction >= p.min_inlier_fraction &&
-         v.constraint >= p.min_constraint &&
-         std::max(v.free_space_violation, v.reverse_free_space_violation) <=
-             p.max_free_space_violation;
+  return verification.inlier_fraction >= params.min_inlier_fraction &&
+         verification.constraint >= params.min_constraint &&
+         std::max(verification.free_space_violation,
+                  verification.reverse_free_space_violation) <=
+             params.max_free_space_violation;
 }
 
 namespace {
 
-/** The hypothesis of highest verification rank among \a hypotheses distinct from
- *  \a pose: turned from it by more than the hypothesis separation, or moved by more
- *  than \a max_shift meters (centered coordinates); -1 when there is none. */
-int runnerUp(const std::vector<RotationHypothesis>& hypotheses, const Pose& pose,
+/** The highest-ranked of \a hypotheses distinct from \a pose (turned by more than the
+ *  hypothesis separation, or moved by more than \a max_shift meters); -1: none. */
+int runnerUp(const std::vector<Hypothesis>& hypotheses, const Pose& pose,
              double max_shift)
 {
   int best = -1;
   for (std::size_t k = 0; k < hypotheses.size(); ++k) {
-    const RotationHypothesis& h = hypotheses[k];
+    const Hypothesis& h = hypotheses[k];
     const double angle = Eigen::AngleAxisd(pose.R.transpose() * h.rotation).angle();
     const bool distinct =
         angle > kHypothesisSeparation || (h.translation - pose.t).norm() > max_shift;
     if (distinct &&
-        (best < 0 || h.verification_rank >
-                         hypotheses[static_cast<std::size_t>(best)].verification_rank))
+        (best < 0 || h.verification.rank >
+                         hypotheses[static_cast<std::size_t>(best)].verification.rank))
       best = static_cast<int>(k);
   }
   return best;
 }
 
-/** Standard error of the weighted mean of \a d (weights \a w): sqrt(sum w^2 (d -
- *  mean)^2) / sum w. */
+/** Standard error of the weighted mean of \a d: sqrt(sum w^2 (d - mean)^2) / sum w. */
 double meanError(const std::vector<double>& d, const Eigen::VectorXd& w)
 {
   double total = 0.0, mean = 0.0;
@@ -81,95 +84,83 @@ double meanError(const std::vector<double>& d, const Eigen::VectorXd& w)
   return std::sqrt(sum) / total;
 }
 
-/** Standard error of rank(a.v) - rank(b.v) from the samples' paired differences: the
- *  same source samples (closeness less kViolationWeight x violation) and the same
- *  target samples (reverse violations) under both poses (about sensor origins). A
+/** Standard error of the rank difference of poses \a a and \a b from the samples'
+ *  paired differences: the same source samples (closeness less kViolationWeight x
+ *  violation) and the same target samples (reverse violations) under both poses. A
  *  difference within a few of it is what the choice of samples alone could give. */
-double rankDifferenceError(const SourceContext& s, const Pose& a, const Pose& b)
+double rankDifferenceError(const SourceContext& source, const RigidPose& a,
+                           const RigidPose& b)
 {
-  const int threads = s.p.num_threads;
+  const int threads = source.params.num_threads;
+  const TargetModel& target = source.target;
+  const VerificationSamples& samples = source.samples;
   const std::vector<double> ca =
-      sampleCloseness(s.target.index, s.samples, a.R, a.t, threads);
+      sampleCloseness(target.index, samples, a.R, a.t, threads);
   const std::vector<double> cb =
-      sampleCloseness(s.target.index, s.samples, b.R, b.t, threads);
+      sampleCloseness(target.index, samples, b.R, b.t, threads);
   std::vector<double> d(ca.size());
   for (std::size_t i = 0; i < d.size(); ++i)
     d[i] = ca[i] - cb[i];
-  const FreeSpace& target_seen = s.target.free_space;
   const std::vector<double> va =
-      sampleViolations(target_seen, s.samples.points, a.R, a.t, threads);
+      sampleViolations(target.free_space, samples.points, a.R, a.t, threads);
   const std::vector<double> vb =
-      sampleViolations(target_seen, s.samples.points, b.R, b.t, threads);
+      sampleViolations(target.free_space, samples.points, b.R, b.t, threads);
   for (std::size_t i = 0; i < d.size(); ++i)
     d[i] -= kViolationWeight * (va[i] - vb[i]);
   // Target samples in the source's frame: q_s = R^T (q_t - t).
-  const Eigen::Matrix3Xd& ts = s.target.samples;
-  const std::vector<double> ra = sampleViolations(s.free_space, ts, a.R.transpose(),
-                                                  -(a.R.transpose() * a.t), threads);
-  const std::vector<double> rb = sampleViolations(s.free_space, ts, b.R.transpose(),
-                                                  -(b.R.transpose() * b.t), threads);
-  std::vector<double> e(ra.size());
-  for (std::size_t j = 0; j < e.size(); ++j)
-    e[j] = -kViolationWeight * (ra[j] - rb[j]);
-  const double source = meanError(d, s.samples.weights);
-  const double target = meanError(e, s.target.sample_weights);
-  return std::sqrt(source * source + target * target);
+  const auto reverseViolations = [&](const RigidPose& pose) {
+    return sampleViolations(source.free_space, target.samples, pose.R.transpose(),
+                            -(pose.R.transpose() * pose.t), threads);
+  };
+  const std::vector<double> ra = reverseViolations(a), rb = reverseViolations(b);
+  std::vector<double> reverse(ra.size());
+  for (std::size_t j = 0; j < reverse.size(); ++j)
+    reverse[j] = -kViolationWeight * (ra[j] - rb[j]);
+  const double source_error = meanError(d, samples.weights);
+  const double target_error = meanError(reverse, target.sample_weights);
+  return std::sqrt(source_error * source_error + target_error * target_error);
 }
 
 } // namespace
 
-Distinctness standsOut(const SourceContext& s, const Pose& pose,
-                       const std::vector<RotationHypothesis>& hypotheses)
+Distinctness standsOut(const SourceContext& source, const Pose& pose,
+                       const std::vector<Hypothesis>& hypotheses)
 {
-  Distinctness d;
-  // Distinct poses are those a polish (two coarse voxels) cannot join.
-  const int k = runnerUp(hypotheses, pose, 2.0 * s.target.coarse.grid.voxel_size);
+  Distinctness distinctness;
+  // Distinct poses are those a local refinement (two coarse voxels) cannot join.
+  const int k = runnerUp(hypotheses, pose, 2.0 * source.target.coarse.grid.voxel_size);
   if (k < 0)
-    return d;
-  const RotationHypothesis& h = hypotheses[static_cast<std::size_t>(k)];
-  d.runner_up_rank = h.verification_rank;
-  if (s.p.sensor_centered) {
-    Pose other;
-    other.R = h.rotation;
-    other.t = h.translation;
-    d.error = rankDifferenceError(s, pose, other);
-  }
-  d.stands_out = rank(pose.v) - d.runner_up_rank > kDistinctErrors * d.error;
-  return d;
+    return distinctness;
+  const Hypothesis& h = hypotheses[static_cast<std::size_t>(k)];
+  distinctness.runner_up_rank = h.verification.rank;
+  if (source.params.sensor_centered)
+    distinctness.error = rankDifferenceError(source, pose, {h.rotation, h.translation});
+  distinctness.stands_out = pose.verification.rank - distinctness.runner_up_rank >
+                            kDistinctErrors * distinctness.error;
+  return distinctness;
 }
 
-/** The covariance of the final \a pose from its own point-to-plane fit into \a e
- *  (fitCovariance over blocks of kFitBlockVoxels coarse voxels; zero when the fit
- *  cannot give one), about the target's projection center. */
-void fitUncertainty(const SourceContext& s, const Pose& pose, PhaserEstimate& e)
+void judgeFinalPose(const SourceContext& source, const Pose& pose, PhaserResult& result)
 {
-  if (!fitCovariance(s.target.index, s.samples, {pose.R, pose.t},
-                     kFitBlockVoxels * s.target.coarse.grid.voxel_size,
-                     e.fit_covariance))
-    e.fit_covariance.setZero();
-}
-
-/** The final \a pose and its verification figures into \a e, and the verdict. */
-void verdict(const SourceContext& s, const Pose& pose, PhaserEstimate& e)
-{
-  e.rotation = pose.R;
-  e.translation = pose.t;
-  e.inlier_fraction = pose.v.inlier_fraction;
-  e.free_space_violation = pose.v.free_space_violation;
-  e.reverse_free_space_violation = pose.v.reverse_free_space_violation;
-  e.constraint = pose.v.constraint;
-  e.verification_samples = static_cast<int>(s.samples.points.cols());
-  e.verification_score = pose.v.score;
-  e.verification_rank = rank(pose.v);
+  PhaserDiagnostics& diagnostics = result.diagnostics;
+  diagnostics.verification = pose.verification;
+  diagnostics.verification_samples = static_cast<int>(source.samples.points.cols());
   const auto start = Clock::now();
-  const Distinctness d = standsOut(s, pose, e.hypotheses);
-  e.runner_up_rank = d.runner_up_rank;
-  e.runner_up_error = d.error;
-  fitUncertainty(s, pose, e);
-  e.verification_ms += msSince(start);
-  e.verified = e.verification_samples >= kMinVerificationSamples &&
-               (!s.p.sensor_centered ||
-                (pose.verifiable && meetsLimits(pose.v, s.p) && d.stands_out));
+  const Distinctness distinctness = standsOut(source, pose, diagnostics.hypotheses);
+  diagnostics.runner_up_rank = distinctness.runner_up_rank;
+  diagnostics.runner_up_error = distinctness.error;
+  // The fit's covariance over blocks of kFitBlockVoxels coarse voxels, about the
+  // target's projection center.
+  if (!fitCovariance(source.target.index, source.samples, pose,
+                     kFitBlockVoxels * source.target.coarse.grid.voxel_size,
+                     result.fit_covariance))
+    result.fit_covariance.setZero();
+  diagnostics.times.verification += msSince(start);
+  diagnostics.verified =
+      diagnostics.verification_samples >= kMinVerificationSamples &&
+      (!source.params.sensor_centered ||
+       (pose.verifiable && meetsLimits(pose.verification, source.params) &&
+        distinctness.stands_out));
 }
 
 } // namespace detail

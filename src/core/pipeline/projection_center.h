@@ -27,12 +27,9 @@ double viewCoverage(const Eigen::Matrix3Xd& points, const Eigen::Vector3d& viewp
  * seen from inside, or a terrestrial scanner, sees floor and ceiling. */
 double polarFraction(const Eigen::Matrix3Xd& points, const Eigen::Vector3d& viewpoint);
 
-/** \brief Least viewCoverage of a cloud in its sensor frame (ProjectionCenter::
- *  Automatic); measured on the shared scans: doc/benchmarks.md section 10. */
+/** \brief Least viewCoverage and most polarFraction of a cloud in its sensor frame
+ *  (ProjectionCenter::Automatic), set between the values of the shared scans. */
 constexpr double kSensorFrameCoverage = 0.2;
-
-/** \brief Most polarFraction of a cloud in its sensor frame (doc/benchmarks.md section
- *  10). */
 constexpr double kSensorFramePolarFraction = 0.005;
 
 /** \brief True when \a points look like a spinning-LiDAR scan seen from its sensor at

@@ -2,8 +2,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * warmUp(): the first align of a process, done ahead on a synthetic scan pair. What it
- * saves is measured in doc/benchmarks.md, "First align in a process".
+ * warmUp(): the first align of a process, done ahead on a synthetic scan pair.
  */
 #include <pcl_phaser/core/warm_up.h>
 
@@ -112,8 +111,8 @@ void keepMemory()
 
 /** \a params with the repeated work cut: one rotation and at most one orientation
  *  hypothesis, at most one Newton step. The sizes (bandwidths, grids, passes, channels)
- *  stay, and with them the tables, plans and buffers: after it, a first align at
- *  \a params took 3-976 page faults against 29,300 (doc/benchmarks.md 11.22). */
+ *  stay, and with them the tables, plans and buffers: after it a first align took
+ *  3-976 page faults instead of 29,300. */
 PhaserParameters cheaper(PhaserParameters params)
 {
   params.rotation_candidates = 1;
