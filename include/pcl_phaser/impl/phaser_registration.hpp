@@ -128,6 +128,11 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
                                                getFusedChannels(), source.channels);
   result_ = pcl::phaser::align(*target_model_, source, guess.template cast<double>(),
                                params_);
+  if (source.points.cols() == 0 && !this->fake_indices_) // not the cloud's fault
+    result_.error =
+        "the indices given to setIndices (" + std::to_string(indices_->size()) +
+        ") select no finite source point; pass indices of finite points, or "
+        "none to use the whole cloud";
   if (!result_.error.empty())
     PCL_ERROR("[pcl::%s::computeTransformation] %s\n", getClassName().c_str(),
               result_.error.c_str());
