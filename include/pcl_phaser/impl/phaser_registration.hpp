@@ -112,6 +112,21 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::setInputTarget(
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar>
+void PhaserRegistration<PointSource, PointTarget, Scalar>::setValid(
+    const pcl::phaser::PhaserParameters& params, const char* setter)
+{
+  const std::string problem = pcl::phaser::validateParameters(params);
+  if (!problem.empty()) {
+    PCL_ERROR("[pcl::%s::%s] %s; the previous settings are kept.\n",
+              getClassName().c_str(), setter, problem.c_str());
+    return;
+  }
+  if (params.channels != params_.channels)
+    target_model_.reset(); // other channels: extract the target again
+  params_ = params;
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
 void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation(
     PointCloudSource& output, const Matrix4& guess)
 {
