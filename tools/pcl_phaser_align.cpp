@@ -65,16 +65,21 @@ void printHelp(int, char** argv)
   print_info(
       "  Registers SOURCE onto TARGET (.pcd, .ply or KITTI .bin) with PHASER and "
       "prints\n  T_target_source (p_target = T * p_source). Options:\n"
-      "    -b, --bandwidth B   = spherical bandwidth, 1..256 (default: %d)\n"
+      "    -b, --bandwidth B   = spherical bandwidth, %s (default: %d)\n"
       "    --grid N            = translation grid voxels along the longest axis, "
-      "8..1024 (default: %d)\n"
-      "    --passes K          = registration passes, 1..5 (default: %d)\n"
+      "%s (default: %d)\n"
+      "    --passes K          = registration passes, %s (default: %d)\n"
       "    --center MODE       = projection center: sensor (each cloud's origin, for "
       "LiDAR scans), centroid, or auto (sensor when both clouds surround their "
       "origin) (default: sensor)\n"
-      "    --threads T         = worker threads, 0..64 (default: %u, one per hardware "
-      "thread; the demo: %d)\n",
-      d.getBandwidth(), d.getParameters().spatial_grid_size, d.getParameters().passes,
+      "    --threads T         = worker threads, %s, 0: one per hardware thread "
+      "(default: 0, here %u; the demo: %d)\n"
+      "    --print-parameters  = print the range of every setting as a Markdown "
+      "table\n",
+      rangeOf("bandwidth").c_str(), d.getBandwidth(),
+      rangeOf("spatial_grid_size").c_str(), d.getParameters().spatial_grid_size,
+      rangeOf("passes").c_str(), d.getParameters().passes,
+      rangeOf("num_threads").c_str(),
       static_cast<unsigned>(pcl::phaser::resolveThreadCount(0)), default_demo_threads);
   print_info(
       "    -icp                = refine with point-to-plane ICP "
@@ -168,9 +173,8 @@ int compute(const pcl::PCLPointCloud2& source_blob,
     params.spatial_grid_size = opt.grid;
   if (opt.passes)
     params.passes = opt.passes;
-  if (opt.threads || opt.demo)
-    params.num_threads =
-        static_cast<int>(opt.threads ? opt.threads : default_demo_threads);
+  if (opt.threads >= 0 || opt.demo)
+    params.num_threads = opt.threads >= 0 ? opt.threads : default_demo_threads;
   using Center = pcl::phaser::ProjectionCenter;
   params.projection_center = opt.center == "centroid" ? Center::Centroid
                              : opt.center == "auto"   ? Center::Automatic
@@ -439,6 +443,10 @@ int main(int argc, char** argv)
 {
   if (find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
     printHelp(argc, argv);
+    return (kOk);
+  }
+  if (find_switch(argc, argv, "--print-parameters")) {
+    std::printf("%s", parameterTable().c_str());
     return (kOk);
   }
   // --json: stdout carries the JSON object only. Everything else, ours, PCL's and

@@ -11,6 +11,8 @@
 #include "cloud_reading.h"
 #include "pcl_phaser_align_screenshot.h"
 
+#include <pcl_phaser/core/parameters.h>
+
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 
@@ -62,7 +64,8 @@ struct Options {
   std::string source, target, output, overlay, screenshot, gt;
   std::string center = "sensor"; // sensor, centroid or auto
   bool demo = false, icp = false, icp_point = false, json = false;
-  int bandwidth = 0, grid = 0, passes = 0, threads = 0; // 0: the class default
+  int bandwidth = 0, grid = 0, passes = 0; // 0: the class default
+  int threads = -1;                        // -1: the class default (the demo: 2)
   double icp_distance = default_icp_distance;
   int width = default_width, height = default_height, seed = default_seed;
 };
@@ -88,14 +91,23 @@ struct Spec {
   const char *name, *alias;
   bool has_value;
 };
-const Spec specs[] = {{"-b", "--bandwidth", true},     {"--grid", nullptr, true},
-                      {"--passes", nullptr, true},     {"--center", "--center", true},
-                      {"--threads", nullptr, true},    {"-icp", "--icp", false},
-                      {"--icp-point", nullptr, false}, {"--icp-dist", nullptr, true},
-                      {"-o", nullptr, true},           {"-m", nullptr, true},
-                      {"--screenshot", nullptr, true}, {"--size", nullptr, true},
-                      {"--gt", nullptr, true},         {"--json", nullptr, false},
-                      {"--demo", nullptr, false},      {"--seed", nullptr, true},
+const Spec specs[] = {{"-b", "--bandwidth", true},
+                      {"--grid", nullptr, true},
+                      {"--passes", nullptr, true},
+                      {"--center", "--center", true},
+                      {"--threads", nullptr, true},
+                      {"-icp", "--icp", false},
+                      {"--icp-point", nullptr, false},
+                      {"--icp-dist", nullptr, true},
+                      {"-o", nullptr, true},
+                      {"-m", nullptr, true},
+                      {"--screenshot", nullptr, true},
+                      {"--size", nullptr, true},
+                      {"--gt", nullptr, true},
+                      {"--json", nullptr, false},
+                      {"--demo", nullptr, false},
+                      {"--seed", nullptr, true},
+                      {"--print-parameters", nullptr, false},
                       {"-h", "--help", false}};
 
 inline const Spec* findSpec(const char* arg)
@@ -163,32 +175,58 @@ inline int parseFilesAndSwitches(int argc, char** argv, Options& opt)
   return (kOk);
 }
 
+/** \brief The range of PhaserParameters field \a name as text, e.g. "2..256". */
+inline std::string rangeOf(const char* name)
+{
+  const pcl::phaser::ParameterRange* r = pcl::phaser::findParameterRange(name);
+  return (std::to_string(int(r->min)) + ".." + std::to_string(int(r->max)));
+}
+
 /** \brief Parse the integer options (-b, --grid, --passes, --threads, --seed), each
- * checked against its range.
+ * checked against its range (pcl::phaser::kParameterRanges for the settings).
  * \return kOk or kUsage (after fail()) */
 inline int parseIntegerOptions(int argc, char** argv, Options& opt)
 {
   const struct {
     const Spec& spec;
-    long lo, hi;
+    const char* field; // of PhaserParameters, or null
     int& value;
-  } ints[] = {{*findSpec("-b"), 1, 256, opt.bandwidth},
-              {*findSpec("--grid"), 8, 1024, opt.grid},
-              {*findSpec("--passes"), 1, 5, opt.passes},
-              {*findSpec("--threads"), 1, 64, opt.threads},
-              {*findSpec("--seed"), 0, INT_MAX, opt.seed}};
+  } ints[] = {{*findSpec("-b"), "bandwidth", opt.bandwidth},
+              {*findSpec("--grid"), "spatial_grid_size", opt.grid},
+              {*findSpec("--passes"), "passes", opt.passes},
+              {*findSpec("--threads"), "num_threads", opt.threads},
+              {*findSpec("--seed"), nullptr, opt.seed}};
   std::string text;
   for (const auto& o : ints) {
+    const auto* r = o.field ? pcl::phaser::findParameterRange(o.field) : nullptr;
+    const long lo = r ? long(r->min) : 0, hi = r ? long(r->max) : INT_MAX;
     long v = 0;
     if (!optionValue(argc, argv, o.spec, text))
       continue;
-    if (!toLong(text, v) || v < o.lo || v > o.hi)
+    if (!toLong(text, v) || v < lo || v > hi)
       return (fail(kUsage,
-                   "Invalid value '%s' for %s: expected an integer in [%ld, %ld].",
-                   text.c_str(), o.spec.name, o.lo, o.hi));
+                   "Invalid value '%s' for %s: expected an integer in %ld..%ld%s%s%s.",
+                   text.c_str(), o.spec.name, lo, hi, r ? " (" : "",
+                   r ? r->meaning : "", r ? ")" : ""));
     o.value = static_cast<int>(v);
   }
   return (kOk);
+}
+
+/** \brief kParameterRanges as a Markdown table, with the defaults of
+ * PhaserParameters: what --print-parameters prints and doc/parameters.md holds. */
+inline std::string parameterTable()
+{
+  const pcl::phaser::PhaserParameters defaults;
+  std::string out =
+      "| field | range | default | unit | meaning |\n|---|---|---|---|---|\n";
+  char row[512];
+  for (const pcl::phaser::ParameterRange& r : pcl::phaser::kParameterRanges) {
+    std::snprintf(row, sizeof(row), "| `%s` | %g..%g | %g | %s | %s |\n", r.name, r.min,
+                  r.max, r.value(defaults), *r.unit ? r.unit : "-", r.meaning);
+    out += row;
+  }
+  return (out);
 }
 
 /** \brief Parse the other valued registration options: --center, --icp-dist, --size.

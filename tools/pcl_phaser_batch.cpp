@@ -39,6 +39,8 @@ int defaultJobs()
 
 void printHelp(const char* name)
 {
+  const pcl::phaser::ParameterRange& threads =
+      *pcl::phaser::findParameterRange("num_threads");
   std::printf(
       "Syntax: %s --pairs LIST --out RESULTS.jsonl [options]\n"
       "        %s --scans LIST --poses POSES --radius R --min-gap K "
@@ -66,7 +68,8 @@ void printHelp(const char* name)
       "                        SLURM_ARRAY_TASK_COUNT when set, else 0/1)\n"
       "    --jobs J          = pairs aligned at once, 1..64, each job taking whole "
       "target groups (default: %d)\n"
-      "    --threads T       = engine threads per job, 0..64 (default: 0, the hardware "
+      "    --threads T       = engine threads per job, %d..%d (default: 0, the "
+      "hardware "
       "threads split between the jobs)\n"
       "    --cache N         = prepared targets kept per job, 1..4096 (default: 4)\n"
       "    -b B, --grid N, --passes K, --center sensor|centroid|auto = as in "
@@ -77,7 +80,7 @@ void printHelp(const char* name)
       "their reason),\n"
       "  1 usage, 2 unreadable input list, 3 output not writable, 130 stopped by "
       "SIGINT/SIGTERM (resume).\n",
-      name, name, name, defaultJobs());
+      name, name, name, defaultJobs(), int(threads.min), int(threads.max));
 }
 
 int usage(const std::string& reason)
@@ -130,15 +133,23 @@ int integer(const Given& given, const std::string& name, long lo, long hi, int& 
   return batch::kOk;
 }
 
+/** \brief An integer option for PhaserParameters field \a field, in its range. */
+int setting(const Given& given, const std::string& name, const char* field, int& value)
+{
+  const pcl::phaser::ParameterRange* r = pcl::phaser::findParameterRange(field);
+  return integer(given, name, long(r->min), long(r->max), value);
+}
+
 int engineSettings(const Given& given, pcl::phaser::PhaserParameters& p, int& cache,
                    int& jobs)
 {
-  for (const int rc : {integer(given, "-b", 1, 256, p.bandwidth),
-                       integer(given, "--grid", 8, 1024, p.spatial_grid_size),
-                       integer(given, "--passes", 1, 5, p.passes),
-                       integer(given, "--threads", 0, 64, p.num_threads),
-                       integer(given, "--cache", 1, 4096, cache),
-                       integer(given, "--jobs", 1, 64, jobs)})
+  for (const int rc :
+       {setting(given, "-b", "bandwidth", p.bandwidth),
+        setting(given, "--grid", "spatial_grid_size", p.spatial_grid_size),
+        setting(given, "--passes", "passes", p.passes),
+        setting(given, "--threads", "num_threads", p.num_threads),
+        integer(given, "--cache", 1, 4096, cache),
+        integer(given, "--jobs", 1, 64, jobs)})
     if (rc != batch::kOk)
       return rc;
   const auto center = given.find("--center");

@@ -108,30 +108,36 @@ public:
    *  \param[in] cloud the target cloud */
   void setInputTarget(const PointCloudTargetConstPtr& cloud) override;
 
-  /** \brief Set every setting at once; each field's meaning, range and default are
-   *  documented in pcl::phaser::PhaserParameters. Ranges are checked at align().
+  /** \brief Set every setting at once (pcl::phaser::PhaserParameters, ranges in
+   *  pcl::phaser::kParameterRanges). Here and in every setter, a value out of its range
+   *  is refused with PCL_ERROR naming it; the previous settings are kept.
    *  \param[in] params the settings */
   void setParameters(const pcl::phaser::PhaserParameters& params)
   {
-    if (params.channels != params_.channels)
-      target_model_.reset(); // other channels: extract the target again
-    params_ = params;
+    setValid(params, "setParameters");
   }
   /** \brief The settings in use. */
   const pcl::phaser::PhaserParameters& getParameters() const { return params_; }
 
-  /** \brief Set the spherical bandwidth B (PhaserParameters::bandwidth, 1..256, default
-   *  64). \param[in] bandwidth the bandwidth */
-  void setBandwidth(int bandwidth) { params_.bandwidth = bandwidth; }
+  /** \brief Set the spherical bandwidth B (PhaserParameters::bandwidth, default 64).
+   *  \param[in] bandwidth the bandwidth */
+  void setBandwidth(int bandwidth)
+  {
+    pcl::phaser::PhaserParameters params = params_;
+    params.bandwidth = bandwidth;
+    setValid(params, "setBandwidth");
+  }
   /** \brief Get the spherical bandwidth. */
   int getBandwidth() const { return params_.bandwidth; }
 
-  /** \brief Set the number of worker threads (0..64; 0, the default: one per hardware
+  /** \brief Set the number of worker threads (0, the default: one per hardware
    *  thread); results are bit-identical for any count.
    *  \param[in] nr_threads number of threads */
   void setNumberOfThreads(unsigned int nr_threads)
   {
-    params_.num_threads = static_cast<int>(nr_threads);
+    pcl::phaser::PhaserParameters params = params_;
+    params.num_threads = static_cast<int>(nr_threads);
+    setValid(params, "setNumberOfThreads");
   }
   /** \brief Get the number of worker threads. */
   unsigned int getNumberOfThreads() const
@@ -206,6 +212,8 @@ private:
     params.channels = use ? (params.channels | channel) : (params.channels & ~channel);
     setParameters(params);
   }
+  /** \brief params_ = \a params when they are valid, else PCL_ERROR from \a setter. */
+  void setValid(const pcl::phaser::PhaserParameters& params, const char* setter);
 
   pcl::phaser::PhaserParameters params_;
   /** \brief The target as the engine keeps it (with its cached spectra); null until the

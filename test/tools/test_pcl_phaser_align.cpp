@@ -390,7 +390,7 @@ TEST_F(PclPhaserAlign, BadInputsFailWithAMessage)
       {"src.pcd tgt.pcd -b", 1},
       {"src.pcd tgt.pcd --gt", 1},
       {"src.pcd tgt.pcd --threads -2", 1},
-      {"src.pcd tgt.pcd --threads 0", 1},
+      {"src.pcd tgt.pcd --threads 65", 1},
       {"src.pcd tgt.pcd --grid 4", 1},
       {"src.pcd tgt.pcd --passes 9", 1},
       {"src.pcd tgt.pcd --center middle", 1},

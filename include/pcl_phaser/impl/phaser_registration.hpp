@@ -112,6 +112,21 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::setInputTarget(
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar>
+void PhaserRegistration<PointSource, PointTarget, Scalar>::setValid(
+    const pcl::phaser::PhaserParameters& params, const char* setter)
+{
+  const std::string problem = pcl::phaser::validateParameters(params);
+  if (!problem.empty()) {
+    PCL_ERROR("[pcl::%s::%s] %s; the previous settings are kept.\n",
+              getClassName().c_str(), setter, problem.c_str());
+    return;
+  }
+  if (params.channels != params_.channels)
+    target_model_.reset(); // other channels: extract the target again
+  params_ = params;
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
 void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation(
     PointCloudSource& output, const Matrix4& guess)
 {
@@ -128,6 +143,11 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::computeTransformation
                                                getFusedChannels(), source.channels);
   result_ = pcl::phaser::align(*target_model_, source, guess.template cast<double>(),
                                params_);
+  if (source.points.cols() == 0 && !this->fake_indices_) // not the cloud's fault
+    result_.error =
+        "the indices given to setIndices (" + std::to_string(indices_->size()) +
+        ") select no finite source point; pass indices of finite points, or "
+        "none to use the whole cloud";
   const pcl::phaser::PhaserDiagnostics& diagnostics = result_.diagnostics;
   if (!result_.error.empty())
     PCL_ERROR("[pcl::%s::computeTransformation] %s\n", getClassName().c_str(),

@@ -58,6 +58,10 @@ std::string checkCloud(const Eigen::Matrix3Xd& points, const ChannelValues& chan
     return std::string("the ") + which + " cloud has non-finite points";
   if (points.cwiseAbs().maxCoeff() > kMaxCoordinate)
     return kTooFar;
+  if ((points.colwise() - points.col(0)).isZero(0.0))
+    return std::string("every finite point of the ") + which + " cloud (" +
+           std::to_string(points.cols()) +
+           ") is at one position: registration needs points spread over a scene";
   for (const Eigen::VectorXd& c : channels)
     if (c.size() != points.cols())
       return std::string("a channel of the ") + which + " cloud has " +

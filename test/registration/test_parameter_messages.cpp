@@ -1,0 +1,150 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ *
+ * The parameter table and the messages of bad settings: one table (kParameterRanges)
+ * checked by validateParameters and the setters, which refuse at once and keep the
+ * previous settings; each message names the field, its value and its range.
+ */
+#include "registration_test_scene.h"
+
+#include <pcl_phaser/phaser_registration.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+using namespace registration_test;
+using pcl::phaser::PhaserParameters;
+
+namespace {
+
+bool has(const std::string& text, const std::string& part)
+{
+  return text.find(part) != std::string::npos;
+}
+
+using Phaser = pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ>;
+
+/** \brief \a p with field \a r set to \a value (rounded for int fields). */
+PhaserParameters with(const pcl::phaser::ParameterRange& r, double value)
+{
+  PhaserParameters p;
+  if (r.integer)
+    p.*r.integer = static_cast<int>(value);
+  else
+    p.*r.real = value;
+  return p;
+}
+
+} // namespace
+
+TEST(ParameterTable, DefaultsAndBoundsAreLegalAndBeyondIsRefusedByName)
+{
+  EXPECT_EQ(pcl::phaser::validateParameters(PhaserParameters()), "");
+  for (const pcl::phaser::ParameterRange& r : pcl::phaser::kParameterRanges) {
+    SCOPED_TRACE(r.name);
+    EXPECT_EQ(pcl::phaser::findParameterRange(r.name), &r);
+    EXPECT_GE(r.value(PhaserParameters()), r.min);
+    EXPECT_LE(r.value(PhaserParameters()), r.max);
+    EXPECT_EQ(pcl::phaser::validateParameters(with(r, r.min)), "");
+    if (std::isfinite(r.max)) {
+      EXPECT_EQ(pcl::phaser::validateParameters(with(r, r.max)), "");
+    }
+    const double step = r.integer ? 1.0 : 0.01;
+    std::vector<double> bad = {r.min - step};
+    if (std::isfinite(r.max))
+      bad.push_back(r.max + step);
+    if (r.real)
+      bad.push_back(std::numeric_limits<double>::quiet_NaN());
+    for (const double v : bad) {
+      const std::string why = pcl::phaser::validateParameters(with(r, v));
+      EXPECT_TRUE(has(why, std::string(r.name) + " = ")) << why;
+      EXPECT_TRUE(has(why, "outside its range")) << why;
+      EXPECT_TRUE(has(why, r.meaning)) << why;
+    }
+  }
+  EXPECT_EQ(pcl::phaser::findParameterRange("no_such_field"), nullptr);
+  // The grid size does not matter, and is not checked, with an explicit voxel size.
+  PhaserParameters p;
+  p.voxel_size = 0.1;
+  p.spatial_grid_size = 0;
+  EXPECT_EQ(pcl::phaser::validateParameters(p), "");
+}
+
+TEST(ParameterMessages, BandwidthOneIsRefusedAndTwoRegisters)
+{
+  // B = 1 keeps only degree 0, a constant on the sphere: the range starts at 2, and 2
+  // runs through on the test scene.
+  EXPECT_EQ(pcl::phaser::findParameterRange("bandwidth")->min, 2);
+  PhaserParameters p;
+  p.bandwidth = 1;
+  EXPECT_EQ(pcl::phaser::validateParameters(p),
+            "bandwidth = 1 is outside its range 2..256 (" +
+                std::string(pcl::phaser::findParameterRange("bandwidth")->meaning) +
+                ")");
+  const auto scene = makeScene<pcl::PointXYZ>();
+  const auto source = seenFrom(*scene, makePose({0, 0, 1}, 0.5, {0.2, 0, 0}));
+  Phaser phaser;
+  phaser.setBandwidth(2);
+  ASSERT_EQ(phaser.getBandwidth(), 2);
+  phaser.setInputSource(source);
+  phaser.setInputTarget(scene);
+  CloudXYZ out;
+  phaser.align(out);
+  EXPECT_EQ(phaser.getResult().error, "");
+}
+
+TEST(ParameterMessages, SettersRefuseAtOnceAndKeepThePreviousSettings)
+{
+  Phaser phaser;
+  phaser.setBandwidth(32);
+  testing::internal::CaptureStderr();
+  phaser.setBandwidth(1);
+  std::string log = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(phaser.getBandwidth(), 32);
+  EXPECT_TRUE(has(log, "setBandwidth")) << log;
+  EXPECT_TRUE(has(log, "bandwidth = 1 is outside its range 2..256")) << log;
+  EXPECT_TRUE(has(log, "the previous settings are kept")) << log;
+
+  testing::internal::CaptureStderr();
+  phaser.setNumberOfThreads(65);
+  log = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(phaser.getNumberOfThreads(), 0u);
+  EXPECT_TRUE(has(log, "num_threads = 65 is outside its range 0..64")) << log;
+  phaser.setNumberOfThreads(3);
+  EXPECT_EQ(phaser.getNumberOfThreads(), 3u);
+  phaser.setNumberOfThreads(0); // automatic, the default
+  EXPECT_EQ(phaser.getNumberOfThreads(), 0u);
+
+  PhaserParameters bad = phaser.getParameters();
+  bad.passes = 2;    // legal, but refused with the rest
+  bad.whitening = 2; // illegal
+  const PhaserParameters given = bad;
+  testing::internal::CaptureStderr();
+  phaser.setParameters(bad);
+  log = testing::internal::GetCapturedStderr();
+  EXPECT_TRUE(has(log, "setParameters")) << log;
+  EXPECT_TRUE(has(log, "whitening = 2 is outside its range 0..1")) << log;
+  EXPECT_EQ(phaser.getParameters().passes, PhaserParameters().passes);
+  EXPECT_EQ(phaser.getParameters().whitening, PhaserParameters().whitening);
+  EXPECT_EQ(phaser.getBandwidth(), 32);
+  EXPECT_EQ(bad.whitening, given.whitening); // the caller's settings are untouched
+  EXPECT_EQ(bad.passes, given.passes);
+}
+
+TEST(ParameterMessages, EngineStillValidatesAtAlign)
+{
+  const auto scene = makeScene<pcl::PointXYZ>(1, 2000);
+  pcl::phaser::Target target(scene->getMatrixXfMap(3, 4, 0).cast<double>());
+  pcl::phaser::SourceCloud source;
+  source.points = target.points();
+  PhaserParameters p;
+  p.orientation_bandwidth = 4;
+  const pcl::phaser::PhaserResult r =
+      pcl::phaser::align(target, source, Eigen::Matrix4d::Identity(), p);
+  EXPECT_TRUE(has(r.error, "orientation_bandwidth = 4 is outside its range 8..128"))
+      << r.error;
+}
