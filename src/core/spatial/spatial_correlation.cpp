@@ -160,7 +160,6 @@ void accumulateSlab(const SpatialGrid& grid, int x, const Splat* first,
 
 } // namespace
 
-// ---------------------------------------------------------------------------------------
 int nextFftFriendlySize(int n)
 {
   if (n > (1 << 30))
