@@ -22,7 +22,8 @@ using Complex = std::complex<double>;
 
 namespace {
 
-/** Correlations of bandwidth below this run on the calling thread. */
+/** Correlations of bandwidth below this (about 1 ms of work at B = 32) run on the
+ *  calling thread: waking a parked worker would cost more. */
 constexpr int kMinParallelBandwidth = 64;
 
 /** F(l, m) for any order, from the stored m >= 0 half of a real function's spectrum. */
@@ -239,8 +240,8 @@ So3Correlator::So3Correlator(int bandwidth, int output_bandwidth)
     log_sin_half_.push_back(std::log(std::sin(0.5 * beta)));
   }
   log_factorials_ = logFactorials(2 * bandwidth_ + 1);
-  // Each slice is N x (Bo+1) complex = N x 2(Bo+1) padded reals; its byte size
-  // 32 Bo (Bo+1) is a multiple of 64, so every slice keeps the planning alignment.
+  // A slice's byte size 32 Bo (Bo+1) is a multiple of 64: every slice keeps the
+  // planning alignment.
   auto slice =
       detail::fftwAllocate<fftw_complex>(static_cast<std::size_t>(N) * (Bo + 1));
   std::lock_guard<std::mutex> lock(detail::fftwPlannerMutex());
@@ -262,8 +263,6 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
   const int rows = beta_rows == 0 ? N : std::min(beta_rows, N);
   checkSpectrum(target, B, "target");
   checkSpectrum(source, B, "source");
-  // Below B = 64 (the orientation histograms' B = 32: about 1 ms of work) the calling
-  // thread does it all: a parked worker would cost more than the work.
   num_threads = B < kMinParallelBandwidth ? 1 : std::max(1, num_threads);
 
   // beta_j for j < Bo; the mirrored half (rows N-1-j) comes from d(pi - beta). With a

@@ -336,12 +336,10 @@ Eigen::Matrix4d BinghamDistribution::moment() const
 
 Eigen::Matrix3d BinghamDistribution::tangentCovariance(TangentFrame frame) const
 {
-  // Error quaternion in the error frame: (cos psi, sin psi n), n in S^2 expressed in
-  // the axes v_i; dx = sin^2 psi dpsi dn, density ~ exp(sin^2 psi sum a_i n_i^2) with
-  // a_i = Z_i - Z_3, and (w >= 0) the rotation angle is 2 min(psi, pi - psi). So
-  // c_i = E[theta^2 n_i^2] = int_0^{pi/2} 4 psi^2 sin^2 psi G_i dpsi / int sin^2 psi G,
-  // G_i(s) = int_{S^2} n_i^2 exp(s sum a_j n_j^2) dn, itself a 1-D integral over the
-  // height v of n = (sqrt(1-v^2) cos, sqrt(1-v^2) sin, v), scaled by e^{-s max a}.
+  // Error quaternion (cos psi, sin psi n) in the error frame, a_i = Z_i - Z_3, angle
+  // 2 psi: c_i = E[theta^2 n_i^2] = int_0^{pi/2} 4 psi^2 sin^2 psi G_i dpsi / int
+  // sin^2 psi G, G_i(s) = int_{S^2} n_i^2 exp(s sum a_j n_j^2) dn, a 1-D integral over
+  // the height v of n, scaled by e^{-s max a}.
   const Eigen::Vector3d a = Z.head<3>().array() - Z(3);
   const double a_max = a.maxCoeff(), a_min = a.minCoeff();
   using Vec4 = Eigen::Matrix<double, 4, 1>;

@@ -40,9 +40,8 @@ FreeSpace freeSpace(const Eigen::Matrix3Xd& points, int bandwidth, double margin
     if (seen == 0.0 || r < seen)
       seen = r;
   }
-  // The nearest return over each cell's 3 x 3 neighborhood (azimuth wraps): a cell can
-  // hold a return from only its far edge (ground at a grazing angle spans meters of
-  // range within one cell), so a sample is tested against everything seen around it.
+  // The nearest return over each cell's 3 x 3 neighborhood (azimuth wraps): a grazing
+  // cell may hold returns from its far edge only.
   const int n = 2 * bandwidth;
   std::vector<double> eroded(free_space.nearest.size(), 0.0);
   for (int j = 0; j < n; ++j)
