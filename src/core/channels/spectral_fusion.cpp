@@ -150,7 +150,6 @@ double medianInPlace(std::vector<double>& v)
 
 } // namespace
 
-// ---------------------------------------------------------------------------------------
 int sphericalBand(int degree, int bandwidth, int levels)
 {
   checkLevels(levels);
@@ -193,7 +192,6 @@ SphericalSpectrum fuseSpherical(const std::vector<SphericalSpectrum>& channels,
   return fused;
 }
 
-// ---------------------------------------------------------------------------------------
 Eigen::VectorXd normalizeChannel(const Eigen::VectorXd& values, double clamp)
 {
   if (!(clamp > 0.0) || !std::isfinite(clamp))

@@ -22,7 +22,8 @@ using Complex = std::complex<double>;
 
 namespace {
 
-/** Correlations of bandwidth below this run on the calling thread. */
+/** Correlations of bandwidth below this (about 1 ms of work at B = 32) run on the
+ *  calling thread: waking a parked worker would cost more. */
 constexpr int kMinParallelBandwidth = 64;
 
 /** F(l, m) for any order, from the stored m >= 0 half of a real function's spectrum. */
@@ -126,47 +127,49 @@ struct WignerTables {
 /** Zeroes what the Wigner stage does not write: orders |m'| >= B (rows p in [B, N-B])
  *  and m >= B (columns q in [B, Bo]), Nyquist included, in beta slices [first, last).
  */
-void zeroUnwrittenOrders(const SliceLayout& g, int first, int last)
+void zeroUnwrittenOrders(const SliceLayout& layout, int first, int last)
 {
   for (int s = first; s < last; ++s)
-    for (int p = 0; p < g.N; ++p) {
-      Complex* row = g.T + s * g.slice + p * g.nh;
-      const bool unused_row = p >= g.B && p <= g.N - g.B;
-      std::fill(row + (unused_row ? 0 : g.B), row + g.nh, Complex(0.0));
+    for (int p = 0; p < layout.N; ++p) {
+      Complex* row = layout.T + s * layout.slice + p * layout.nh;
+      const bool unused_row = p >= layout.B && p <= layout.N - layout.B;
+      std::fill(row + (unused_row ? 0 : layout.B), row + layout.nh, Complex(0.0));
     }
 }
 
 /** The Wigner stage for order m and every m': the two half-plane sums over l, written
  *  (conjugated) into column m of rows m' and -m' of every beta slice. */
 void wignerOrder(const SphericalSpectrum& target, const SphericalSpectrum& source,
-                 int m, const WignerTables& tables, const SliceLayout& g,
-                 WignerScratch& w)
+                 int m, const WignerTables& tables, const SliceLayout& layout,
+                 WignerScratch& scratch)
 {
-  const int B = g.B, N = g.N, J = g.J;
+  const int B = layout.B, N = layout.N, J = layout.J;
   for (int mp = -(B - 1); mp < B; ++mp) {
     const int L = std::max(std::abs(mp), m);
     for (int l = L; l < B; ++l) {
       const Complex h = source(l, m);
-      w.c[l] = std::conj(coefficient(target, l, mp)) * h;
+      scratch.c[l] = std::conj(coefficient(target, l, mp)) * h;
       const Complex c2 = std::conj(coefficient(target, l, -mp)) * h;
-      w.c[B + l] = ((l - m) % 2) ? -c2 : c2;
+      scratch.c[B + l] = ((l - m) % 2) ? -c2 : c2;
     }
     const WignerStart start = wignerStart(mp, m, tables.log_factorials);
     for (int j = 0; j < J; ++j)
-      w.d0[j] = start.value(tables.log_cos_half[j], tables.log_sin_half[j]);
+      scratch.d0[j] = start.value(tables.log_cos_half[j], tables.log_sin_half[j]);
     accumulateDegrees(tables.steps, L, B, J, 2, mp, m, tables.cos_beta.data(),
-                      reinterpret_cast<const double*>(w.c.data()), w.d0.data(),
-                      w.d1.data(), w.d2.data(), w.acc_re.data(), w.acc_im.data());
-    const double* a1r = w.acc_re.data();
-    const double* a1i = w.acc_im.data();
-    const double* a2r = w.acc_re.data() + J;
-    const double* a2i = w.acc_im.data() + J;
+                      reinterpret_cast<const double*>(scratch.c.data()),
+                      scratch.d0.data(), scratch.d1.data(), scratch.d2.data(),
+                      scratch.acc_re.data(), scratch.acc_im.data());
+    const double* a1r = scratch.acc_re.data();
+    const double* a1i = scratch.acc_im.data();
+    const double* a2r = scratch.acc_re.data() + J;
+    const double* a2i = scratch.acc_im.data() + J;
     // c2r computes sum T e^{+i...}: feed conj(S) to get the e^{-i...} sum of the spec.
     const int p1 = wrap(mp, N), p2 = wrap(-mp, N);
     for (int j = 0; j < J; ++j) {
-      g.T[j * g.slice + p1 * g.nh + m] = Complex(a1r[j], -a1i[j]);
-      if (N - 1 - j < g.rows)
-        g.T[(N - 1 - j) * g.slice + p2 * g.nh + m] = Complex(a2r[j], -a2i[j]);
+      layout.T[j * layout.slice + p1 * layout.nh + m] = Complex(a1r[j], -a1i[j]);
+      if (N - 1 - j < layout.rows)
+        layout.T[(N - 1 - j) * layout.slice + p2 * layout.nh + m] =
+            Complex(a2r[j], -a2i[j]);
     }
   }
 }
@@ -184,25 +187,24 @@ void wignerStage(const SphericalSpectrum& target, const SphericalSpectrum& sourc
                           if (k < layout.rows)
                             zeroUnwrittenOrders(layout, k, k + 1);
                           if (k < layout.B) {
-                            WignerScratch w(layout.J, layout.B);
-                            wignerOrder(target, source, k, tables, layout, w);
+                            WignerScratch scratch(layout.J, layout.B);
+                            wignerOrder(target, source, k, tables, layout, scratch);
                           }
                         }
                       });
 }
 
 /** One in-place N x N c2r FFT per beta slice in [first, last). */
-void inverseSlices(const SliceLayout& g, fftw_plan slice_c2r, int first, int last)
+void inverseSlices(const SliceLayout& layout, fftw_plan slice_c2r, int first, int last)
 {
   for (int s = first; s < last; ++s) {
-    fftw_complex* in = reinterpret_cast<fftw_complex*>(g.T + s * g.slice);
+    fftw_complex* in = reinterpret_cast<fftw_complex*>(layout.T + s * layout.slice);
     fftw_execute_dft_c2r(slice_c2r, in, reinterpret_cast<double*>(in));
   }
 }
 
 } // namespace
 
-// ---------------------------------------------------------------------------------------
 struct So3Correlator::Plan {
   detail::FftwPlan slice_c2r; // one in-place N x N c2r, run once per beta sample
 };
@@ -238,8 +240,8 @@ So3Correlator::So3Correlator(int bandwidth, int output_bandwidth)
     log_sin_half_.push_back(std::log(std::sin(0.5 * beta)));
   }
   log_factorials_ = logFactorials(2 * bandwidth_ + 1);
-  // Each slice is N x (Bo+1) complex = N x 2(Bo+1) padded reals; its byte size
-  // 32 Bo (Bo+1) is a multiple of 64, so every slice keeps the planning alignment.
+  // A slice's byte size 32 Bo (Bo+1) is a multiple of 64: every slice keeps the
+  // planning alignment.
   auto slice =
       detail::fftwAllocate<fftw_complex>(static_cast<std::size_t>(N) * (Bo + 1));
   std::lock_guard<std::mutex> lock(detail::fftwPlannerMutex());
@@ -261,8 +263,6 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
   const int rows = beta_rows == 0 ? N : std::min(beta_rows, N);
   checkSpectrum(target, B, "target");
   checkSpectrum(source, B, "source");
-  // Below B = 64 (the orientation histograms' B = 32: about 1 ms of work) the calling
-  // thread does it all: a parked worker would cost more than the work.
   num_threads = B < kMinParallelBandwidth ? 1 : std::max(1, num_threads);
 
   // beta_j for j < Bo; the mirrored half (rows N-1-j) comes from d(pi - beta). With a

@@ -90,9 +90,8 @@ private:
  *  gradient; at most \a max_step long, zero when a difference is not finite. */
 Eigen::Vector3d newtonStep(const std::vector<double>& c, double h, double max_step)
 {
-  // Central differences; indices follow makeStencil(): 1 + 2i is +e_i, 2 + 2i is
-  // -e_i, and the mixed terms come in blocks of 4 (++, +-, -+, --) for (0,1), (0,2),
-  // (1,2).
+  // Central differences on makeStencil(): 1 + 2i is +e_i, 2 + 2i is -e_i, then blocks
+  // of 4 (++, +-, -+, --) for (0,1), (0,2), (1,2).
   Eigen::Vector3d g;
   Eigen::Matrix3d H;
   for (int i = 0; i < 3; ++i) {

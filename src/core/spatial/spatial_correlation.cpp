@@ -73,8 +73,8 @@ void pointFootprints(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
   }
 }
 
-/** Points per chunk of the footprints and of the counting sort: fixed, so the chunks
- *  (and the order of the sort) do not depend on the thread count. */
+/** Points per chunk of the counting sort, fixed so its order does not depend on the
+ *  thread count. */
 constexpr std::size_t kSortChunk = 16384;
 
 /** Bucket of a footprint in the counting sort: its lower x index + 1, in [0, nx]. */
@@ -83,21 +83,17 @@ std::size_t bucketOf(const Splat& s)
   return static_cast<std::size_t>(s.base.x() + 1);
 }
 
-/** Stable counting sort of the footprints in \a all marked \a inside by lower x index
- *  (base x in [-1, nx)) into \a sorted, in parallel over chunks of kSortChunk points:
- *  each chunk counts its buckets (\a counts, nx + 1 per chunk), the offsets follow in
- *  bucket-then-chunk order, and each chunk scatters its points, so every bucket holds
- *  its points in point order whatever the thread count. \a slab_start (nx + 2 entries)
- *  receives the bucket starts: bucket b (lower index b - 1) is [start[b], start[b +
- *  1]), so slab x visits the points with lower index x-1 and x, each run in point
- *  order. */
+/** Stable counting sort of the footprints marked \a inside by lower x index into
+ *  \a sorted, in parallel over chunks of kSortChunk points (counts per chunk, offsets
+ * in bucket-then-chunk order, then a scatter), so each bucket holds its points in point
+ *  order whatever the thread count. Bucket b (lower index b - 1) is [slab_start[b],
+ *  slab_start[b + 1]). */
 void sortBySlab(const Splat* all, const char* inside, std::size_t count, Splat* sorted,
                 std::vector<std::size_t>& slab_start, int threads)
 {
   const std::size_t buckets = slab_start.size() - 1;
   const std::size_t chunks = (count + kSortChunk - 1) / kSortChunk;
   std::vector<std::size_t> counts(chunks * buckets, 0);
-  // op(i, the chunk's row of counts) for every point i marked inside, chunk by chunk.
   const auto eachChunk = [&](const auto& op) {
     detail::parallelFor(static_cast<std::ptrdiff_t>(chunks), 1, threads,
                         [&](std::ptrdiff_t c, std::ptrdiff_t, int) {
@@ -160,7 +156,6 @@ void accumulateSlab(const SpatialGrid& grid, int x, const Splat* first,
 
 } // namespace
 
-// ---------------------------------------------------------------------------------------
 int nextFftFriendlySize(int n)
 {
   if (n > (1 << 30))
@@ -283,11 +278,9 @@ SpatialSpectrum computeSpectrum(const SpatialVolume& volume, int num_threads)
 
 namespace {
 
-/** c_i = f_i conj(g_i) * scale / |f_i conj(g_i)|^(1/2) (0 where the product is 0), for
- *  \a count complex values stored as interleaved (re, im) doubles; \a c may be \a g
- *  (each value is read before it is written). The default whitening's kernel, in plain
- *  arrays so that it vectorizes; dispatched like the Wigner kernels (AVX2 where the CPU
- *  has it, no FMA: the bits are those of the scalar loop). */
+/** c_i = f_i conj(g_i) scale / |f_i conj(g_i)|^(1/2) (0 where the product is 0) on
+ *  interleaved (re, im) doubles; \a c may be \a g. Plain arrays, compiled for AVX2 and
+ *  the default (no FMA: the bits of the scalar loop). */
 [[gnu::target_clones("avx2", "default")]] void
 quarterWhitenedProduct(const double* f, const double* g, double* c, std::size_t count,
                        double scale)

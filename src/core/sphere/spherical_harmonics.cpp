@@ -20,8 +20,8 @@ using Complex = std::complex<double>;
 
 namespace {
 
-/** Bandwidths below this are transformed by the calling thread (B = 64: about 0.5 ms
- *  of work, less than handing it to a worker costs when the worker is parked). */
+/** Bandwidths below this are transformed by the calling thread: at B = 64 (0.5 ms)
+ *  waking a parked worker costs more. */
 constexpr int kMinParallelBandwidth = 128;
 
 } // namespace
@@ -138,15 +138,12 @@ SphericalSpectrum SphericalHarmonicTransform::forward(const double* samples,
 
   SphericalSpectrum F = SphericalSpectrum::Zero(B, B);
   const double scale = M_PI / B;
-  // Below kMinParallelBandwidth the whole transform (B^3 / 2 multiply-adds) takes less
-  // than waking a worker on a busy machine.
   const int threads = B < kMinParallelBandwidth ? 1 : std::max(1, num_threads);
   detail::parallelFor(
       B, 1, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
         std::vector<Complex> even(B), odd(B);
         for (int m = static_cast<int>(first); m < last; ++m) {
-          // Fold northern and southern rings, weighted, so each degree is one dot
-          // product.
+          // Fold northern and southern rings: each degree is one dot product.
           for (int j = 0; j < B; ++j) {
             const Complex north = ring[j * nh + m];
             const Complex south = ring[(n - 1 - j) * nh + m];

@@ -24,8 +24,6 @@ std::vector<int> sphereCells(const Eigen::Matrix3Xd& points, int bandwidth,
                              int num_threads)
 {
   checkBandwidth(bandwidth);
-  // Two atan2 per point, a pure function of the point: parallel, same result for any
-  // thread count.
   const Eigen::Index n = points.cols();
   std::vector<int> cells(static_cast<std::size_t>(n));
   const int threads = n < kMinParallelPoints ? 1 : std::max(1, num_threads);

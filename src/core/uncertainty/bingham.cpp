@@ -248,19 +248,21 @@ BinghamNormalizer normalizerAt(const Eigen::Vector3d& y)
 }
 
 /** One damped Newton step on the convex L(y) = log F(y, 0) - w . (y, 0) from (\a y,
- *  its normalizer \a n), whose gradient is \a g = E[x^2] - w and Hessian
+ *  its \a normalizer), whose gradient is \a g = E[x^2] - w and Hessian
  *  Cov(x_i^2, x_j^2) = E[x_i^2 x_j^2] - E[x_i^2] E[x_j^2]; the step is halved until
- *  Armijo holds. False, with \a y and \a n unchanged, when no length is accepted. */
+ *  Armijo holds. False, with \a y and \a normalizer unchanged, when no length is
+ * accepted. */
 bool dampedNewtonStep(const Eigen::Vector4d& w, const Eigen::Vector3d& g,
-                      Eigen::Vector3d& y, BinghamNormalizer& n)
+                      Eigen::Vector3d& y, BinghamNormalizer& normalizer)
 {
-  const Eigen::Vector3d m = n.moments.head<3>();
-  const Eigen::Matrix3d h = n.fourth_moments.topLeftCorner<3, 3>() - m * m.transpose();
+  const Eigen::Vector3d m = normalizer.moments.head<3>();
+  const Eigen::Matrix3d h =
+      normalizer.fourth_moments.topLeftCorner<3, 3>() - m * m.transpose();
   // Jacobi scaling: the diagonal spans ~1/(2 z^2), i.e. many orders of magnitude.
   const Eigen::Vector3d d = h.diagonal().cwiseSqrt().cwiseInverse();
   const Eigen::Matrix3d hs = d.asDiagonal() * h * d.asDiagonal();
   const Eigen::Vector3d step = -d.cwiseProduct(hs.ldlt().solve(d.cwiseProduct(g)));
-  const double l0 = n.log_f - w.head<3>().dot(y), slope = g.dot(step);
+  const double l0 = normalizer.log_f - w.head<3>().dot(y), slope = g.dot(step);
   for (double alpha = 1.0; alpha > 1e-12; alpha *= 0.5) {
     const Eigen::Vector3d y_new = y + alpha * step;
     const BinghamNormalizer n_new = normalizerAt(y_new);
@@ -268,7 +270,7 @@ bool dampedNewtonStep(const Eigen::Vector4d& w, const Eigen::Vector3d& g,
     // Armijo, with slack for the ~1e-13 rounding of log F near the optimum.
     if (l_new <= l0 + 1e-4 * alpha * slope + 1e-13 * (1.0 + std::abs(l0))) {
       y = y_new;
-      n = n_new;
+      normalizer = n_new;
       return true;
     }
   }
@@ -299,12 +301,12 @@ Eigen::Vector4d binghamMaximumLikelihood(const Eigen::Vector4d& omega, double* r
   Eigen::Vector3d y;
   for (int i = 0; i < 3; ++i)
     y(i) = std::min(0.0, 0.5 / w(3) - 0.5 / w(i));
-  BinghamNormalizer n = normalizerAt(y);
+  BinghamNormalizer normalizer = normalizerAt(y);
   double res = 0.0;
   for (int iter = 0; iter < 200; ++iter) {
-    const Eigen::Vector3d g = n.moments.head<3>() - w.head<3>();
+    const Eigen::Vector3d g = normalizer.moments.head<3>() - w.head<3>();
     res = g.cwiseQuotient(w.head<3>()).cwiseAbs().maxCoeff();
-    if (res < 1e-10 || !dampedNewtonStep(w, g, y, n))
+    if (res < 1e-10 || !dampedNewtonStep(w, g, y, normalizer))
       break;
   }
   if (residual)
@@ -334,12 +336,10 @@ Eigen::Matrix4d BinghamDistribution::moment() const
 
 Eigen::Matrix3d BinghamDistribution::tangentCovariance(TangentFrame frame) const
 {
-  // Error quaternion in the error frame: (cos psi, sin psi n), n in S^2 expressed in
-  // the axes v_i; dx = sin^2 psi dpsi dn, density ~ exp(sin^2 psi sum a_i n_i^2) with
-  // a_i = Z_i - Z_3, and (w >= 0) the rotation angle is 2 min(psi, pi - psi). So
-  // c_i = E[theta^2 n_i^2] = int_0^{pi/2} 4 psi^2 sin^2 psi G_i dpsi / int sin^2 psi G,
-  // G_i(s) = int_{S^2} n_i^2 exp(s sum a_j n_j^2) dn, itself a 1-D integral over the
-  // height v of n = (sqrt(1-v^2) cos, sqrt(1-v^2) sin, v), scaled by e^{-s max a}.
+  // Error quaternion (cos psi, sin psi n) in the error frame, a_i = Z_i - Z_3, angle
+  // 2 psi: c_i = E[theta^2 n_i^2] = int_0^{pi/2} 4 psi^2 sin^2 psi G_i dpsi / int
+  // sin^2 psi G, G_i(s) = int_{S^2} n_i^2 exp(s sum a_j n_j^2) dn, a 1-D integral over
+  // the height v of n, scaled by e^{-s max a}.
   const Eigen::Vector3d a = Z.head<3>().array() - Z(3);
   const double a_max = a.maxCoeff(), a_min = a.minCoeff();
   using Vec4 = Eigen::Matrix<double, 4, 1>;

@@ -62,11 +62,8 @@ struct PeakCandidate {
 };
 
 /** The local maxima (26 neighbors, wrapping as valueAt does) of \a grid in the upper
- *  half of its value range, best first (ties by flat index). Only samples in the upper
- *  half can be peaks worth reporting; the neighbor test then runs on few of them. Min
- *  and max are exact in any order, and the maxima are gathered per beta row and joined
- *  in row order, so the result does not depend on the thread count. One parallel
- *  region: the value range per beta row, its merge (one thread), then the maxima. */
+ *  half of its value range, best first (ties by flat index): the value range per beta
+ *  row, then the maxima per row joined in row order, whatever the thread count. */
 std::vector<PeakCandidate> upperLocalMaxima(const So3CorrelationGrid& grid, int threads)
 {
   const int N = grid.size();
@@ -75,8 +72,7 @@ std::vector<PeakCandidate> upperLocalMaxima(const So3CorrelationGrid& grid, int 
   detail::parallelFor(
       N, 4, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
         for (std::ptrdiff_t j = first; j < last; ++j) {
-          // Four independent running extremes (exact in any order): one chain would
-          // wait on each comparison.
+          // Four independent running extremes: one chain would wait on each comparison.
           constexpr double inf = std::numeric_limits<double>::infinity();
           double lo[4] = {inf, inf, inf, inf}, hi[4] = {-inf, -inf, -inf, -inf};
           for (int a = 0; a < N; ++a)
@@ -100,8 +96,7 @@ std::vector<PeakCandidate> upperLocalMaxima(const So3CorrelationGrid& grid, int 
               const double v = grid(j, a, c);
               if (v < floor)
                 continue;
-              // The neighbors along c first: in the same row, and on a smooth grid
-              // usually one of them is higher already.
+              // The neighbors along c first: on a smooth grid one is usually higher.
               const double left =
                   c > 0 ? grid(j, a, c - 1) : valueAt(grid, j, a, c - 1);
               const double right =

@@ -33,33 +33,33 @@ struct FitTerms {
 FitTerms fitTerms(const PointIndex& target, const VerificationSamples& samples,
                   const RigidPose& pose)
 {
-  FitTerms f;
+  FitTerms terms;
   std::vector<Eigen::Vector3d> positions;
   forEachPlaneMatch(target, samples, pose, [&](const PlaneMatch& m) {
-    f.H += m.weight * m.jacobian * m.jacobian.transpose();
-    f.gradients.push_back(m.weight * m.residual * m.jacobian);
-    f.gradient += f.gradients.back();
+    terms.H += m.weight * m.jacobian * m.jacobian.transpose();
+    terms.gradients.push_back(m.weight * m.residual * m.jacobian);
+    terms.gradient += terms.gradients.back();
     positions.push_back(m.position);
   });
-  f.positions.resize(3, static_cast<Eigen::Index>(positions.size()));
+  terms.positions.resize(3, static_cast<Eigen::Index>(positions.size()));
   for (std::size_t i = 0; i < positions.size(); ++i)
-    f.positions.col(static_cast<Eigen::Index>(i)) = positions[i];
-  return f;
+    terms.positions.col(static_cast<Eigen::Index>(i)) = positions[i];
+  return terms;
 }
 
 /** M = sum over the blocks of edge \a block of (sum of their g_i)(...)^T, averaged
  *  over the grid and the grid offset by half a block along every axis (a pair of
  *  correlated samples split by one grid's boundary is joined in the other). */
-Matrix6d blockMeat(const FitTerms& f, double block)
+Matrix6d blockMeat(const FitTerms& terms, double block)
 {
   Matrix6d M = Matrix6d::Zero();
   for (const double offset : {0.0, 0.5 * block}) {
-    const Eigen::Matrix3Xd shifted = f.positions.array() + offset;
+    const Eigen::Matrix3Xd shifted = terms.positions.array() + offset;
     const VoxelGroups groups = groupByVoxel(shifted, block);
     for (std::size_t g = 0; g < groups.size(); ++g) {
       Vector6d sum = Vector6d::Zero();
       for (Eigen::Index k = groups.offsets[g]; k < groups.offsets[g + 1]; ++k)
-        sum += f.gradients[static_cast<std::size_t>(
+        sum += terms.gradients[static_cast<std::size_t>(
             groups.order[static_cast<std::size_t>(k)])];
       M += 0.5 * sum * sum.transpose();
     }
@@ -75,17 +75,17 @@ bool fitCovariance(const PointIndex& target, const VerificationSamples& samples,
 {
   if (!(block > 0.0) || samples.weights.size() != samples.points.cols())
     return false;
-  const FitTerms f = fitTerms(target, samples, pose);
-  if (f.gradients.size() < static_cast<std::size_t>(kMinFitSamples))
+  const FitTerms terms = fitTerms(target, samples, pose);
+  if (terms.gradients.size() < static_cast<std::size_t>(kMinFitSamples))
     return false;
-  const Eigen::LDLT<Matrix6d> ldlt(f.H);
+  const Eigen::LDLT<Matrix6d> ldlt(terms.H);
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive() ||
-      !(ldlt.vectorD().minCoeff() > 1e-12 * f.H.trace()))
+      !(ldlt.vectorD().minCoeff() > 1e-12 * terms.H.trace()))
     return false;
   const Matrix6d Hi = ldlt.solve(Matrix6d::Identity());
-  const Vector6d step = -Hi * f.gradient;
-  Matrix6d C =
-      kFitModelErrorFactor * Hi * blockMeat(f, block) * Hi + step * step.transpose();
+  const Vector6d step = -Hi * terms.gradient;
+  Matrix6d C = kFitModelErrorFactor * Hi * blockMeat(terms, block) * Hi +
+               step * step.transpose();
   C = 0.5 * (C + C.transpose()).eval();
   const double smallest = Eigen::SelfAdjointEigenSolver<Matrix6d>(C).eigenvalues()[0];
   if (!C.allFinite() || !(smallest > 1e-12 * C.trace()))

@@ -48,12 +48,12 @@ int sweep(const PointIndex& target, const VerificationSamples& samples,
 /** One damped Gauss-Newton step of \a pose against \a target, its increment (rotation
  *  vector, then translation) into \a delta. False, with \a pose unchanged, when fewer
  *  than six samples match or the step is not finite. */
-bool step(const PointIndex& target, const VerificationSamples& s, RigidPose& pose,
+bool step(const PointIndex& target, const VerificationSamples& samples, RigidPose& pose,
           Eigen::Matrix<double, 6, 1>& delta)
 {
   Eigen::Matrix<double, 6, 6> H;
   Eigen::Matrix<double, 6, 1> g;
-  if (sweep(target, s, pose, H, g) < 6)
+  if (sweep(target, samples, pose, H, g) < 6)
     return false;
   // A little damping keeps directions the matches leave free (ground only, one wall
   // direction) where they are.
@@ -71,7 +71,7 @@ bool step(const PointIndex& target, const VerificationSamples& s, RigidPose& pos
  *  (radians) and \a max_shift (meters) around its center: \a start, or the pose a
  *  \a reach step put it at (that step skipped if it fails or leaves the region around
  *  \a start). The center is returned when a step leaves. */
-RigidPose refine(const PointIndex& target, const VerificationSamples& s,
+RigidPose refine(const PointIndex& target, const VerificationSamples& samples,
                  const RigidPose& start, int iterations, double max_angle,
                  double max_shift, const PointIndex* reach)
 {
@@ -84,12 +84,12 @@ RigidPose refine(const PointIndex& target, const VerificationSamples& s,
   RigidPose center = start;
   if (reach) {
     RigidPose reached = start;
-    if (step(*reach, s, reached, delta) && !outside(reached, start))
+    if (step(*reach, samples, reached, delta) && !outside(reached, start))
       center = reached;
   }
   RigidPose pose = center;
   for (int it = 0; it < iterations; ++it) {
-    if (!step(target, s, pose, delta))
+    if (!step(target, samples, pose, delta))
       break;
     if (outside(pose, center))
       return center;
@@ -102,11 +102,11 @@ RigidPose refine(const PointIndex& target, const VerificationSamples& s,
 
 } // namespace
 
-RigidPose refinePose(const PointIndex& target, const VerificationSamples& s,
+RigidPose refinePose(const PointIndex& target, const VerificationSamples& samples,
                      const RigidPose& start, int iterations)
 {
   const double unbounded = std::numeric_limits<double>::infinity();
-  return refine(target, s, start, iterations, unbounded, unbounded, nullptr);
+  return refine(target, samples, start, iterations, unbounded, unbounded, nullptr);
 }
 
 RigidPose refinePoseWithin(const PointIndex& target, const VerificationSamples& samples,

@@ -26,28 +26,27 @@ constexpr Eigen::Index kMinParallelSamples = 8192;
 FreeSpace freeSpace(const Eigen::Matrix3Xd& points, int bandwidth, double margin,
                     int num_threads)
 {
-  FreeSpace f;
-  f.bandwidth = bandwidth;
-  f.margin = margin;
-  f.nearest.assign(4 * static_cast<std::size_t>(bandwidth) * bandwidth, 0.0);
+  FreeSpace free_space;
+  free_space.bandwidth = bandwidth;
+  free_space.margin = margin;
+  free_space.nearest.assign(4 * static_cast<std::size_t>(bandwidth) * bandwidth, 0.0);
   const std::vector<int> cells = sphereCells(points, bandwidth, num_threads);
   for (Eigen::Index i = 0; i < points.cols(); ++i) {
     const int c = cells[static_cast<std::size_t>(i)];
     if (c < 0)
       continue;
     const double r = points.col(i).norm();
-    double& seen = f.nearest[static_cast<std::size_t>(c)];
+    double& seen = free_space.nearest[static_cast<std::size_t>(c)];
     if (seen == 0.0 || r < seen)
       seen = r;
   }
-  // The nearest return over each cell's 3 x 3 neighborhood (azimuth wraps): a cell can
-  // hold a return from only its far edge (ground at a grazing angle spans meters of
-  // range within one cell), so a sample is tested against everything seen around it.
+  // The nearest return over each cell's 3 x 3 neighborhood (azimuth wraps): a grazing
+  // cell may hold returns from its far edge only.
   const int n = 2 * bandwidth;
-  std::vector<double> eroded(f.nearest.size(), 0.0);
+  std::vector<double> eroded(free_space.nearest.size(), 0.0);
   for (int j = 0; j < n; ++j)
     for (int k = 0; k < n; ++k) {
-      double m = f.nearest[static_cast<std::size_t>(j) * n + k];
+      double m = free_space.nearest[static_cast<std::size_t>(j) * n + k];
       if (m == 0.0) // no return here: nothing is known, whatever the neighbors saw
         continue;
       for (int dj = -1; dj <= 1; ++dj) {
@@ -56,15 +55,15 @@ FreeSpace freeSpace(const Eigen::Matrix3Xd& points, int bandwidth, double margin
           continue;
         for (int dk = -1; dk <= 1; ++dk) {
           const double r =
-              f.nearest[static_cast<std::size_t>(jj) * n + (k + dk + n) % n];
+              free_space.nearest[static_cast<std::size_t>(jj) * n + (k + dk + n) % n];
           if (r > 0.0 && (m == 0.0 || r < m))
             m = r;
         }
       }
       eroded[static_cast<std::size_t>(j) * n + k] = m;
     }
-  f.nearest = std::move(eroded);
-  return f;
+  free_space.nearest = std::move(eroded);
+  return free_space;
 }
 
 std::vector<double> sampleViolations(const FreeSpace& seen,
@@ -92,34 +91,35 @@ double freeSpaceViolation(const FreeSpace& seen, const Eigen::Matrix3Xd& samples
 {
   if (seen.bandwidth <= 0 || samples.cols() == 0 || weights.size() != samples.cols())
     return 0.0;
-  const std::vector<double> v = sampleViolations(seen, samples, R, t, num_threads);
+  const std::vector<double> violations =
+      sampleViolations(seen, samples, R, t, num_threads);
   double violating = 0.0, total = 0.0;
   for (Eigen::Index i = 0; i < samples.cols(); ++i) {
-    violating += v[static_cast<std::size_t>(i)] * weights[i];
+    violating += violations[static_cast<std::size_t>(i)] * weights[i];
     total += weights[i];
   }
   return total > 0.0 ? violating / total : 0.0;
 }
 
 std::vector<double> sampleCloseness(const PointIndex& target,
-                                    const VerificationSamples& s,
+                                    const VerificationSamples& samples,
                                     const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
                                     int num_threads)
 {
-  const Eigen::Index n = s.points.cols();
+  const Eigen::Index n = samples.points.cols();
   std::vector<double> closeness(static_cast<std::size_t>(n), 0.0);
   if (n == 0 || target.empty())
     return closeness;
-  const bool with_normals = s.normals.cols() != 0;
+  const bool with_normals = samples.normals.cols() != 0;
   const double r2 = target.radius() * target.radius();
   const int threads = n < kMinParallelSamples ? 1 : std::max(1, num_threads);
   detail::parallelFor(
       n, 256, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
         for (std::ptrdiff_t i = first; i < last; ++i) {
-          const Eigen::Vector3d q = R * s.points.col(i) + t;
-          const Eigen::Vector3d normal = with_normals
-                                             ? Eigen::Vector3d(R * s.normals.col(i))
-                                             : Eigen::Vector3d::Zero();
+          const Eigen::Vector3d q = R * samples.points.col(i) + t;
+          const Eigen::Vector3d normal =
+              with_normals ? Eigen::Vector3d(R * samples.normals.col(i))
+                           : Eigen::Vector3d::Zero();
           const double d2 = target.nearestSquaredDistance(
               q, normal, with_normals ? kMinNormalCosine : 0.0);
           if (std::isfinite(d2))
@@ -129,22 +129,24 @@ std::vector<double> sampleCloseness(const PointIndex& target,
   return closeness;
 }
 
-PoseVerification verifyPose(const PointIndex& target, const VerificationSamples& s,
+PoseVerification verifyPose(const PointIndex& target,
+                            const VerificationSamples& samples,
                             const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
                             int num_threads, const FreeSpace* free_space)
 {
-  const Eigen::Matrix3Xd& samples = s.points;
-  const Eigen::VectorXd& weights = s.weights;
-  if (weights.size() != samples.cols() ||
-      (s.normals.cols() != 0 && s.normals.cols() != samples.cols()))
+  const Eigen::Matrix3Xd& points = samples.points;
+  const Eigen::VectorXd& weights = samples.weights;
+  if (weights.size() != points.cols() ||
+      (samples.normals.cols() != 0 && samples.normals.cols() != points.cols()))
     throw InvalidArgument("verifyPose: one weight (and normal, if any) per sample");
-  const bool with_normals = s.normals.cols() != 0;
-  PoseVerification v;
-  const Eigen::Index n = samples.cols();
+  const bool with_normals = samples.normals.cols() != 0;
+  PoseVerification verification;
+  const Eigen::Index n = points.cols();
   if (n == 0 || target.empty())
-    return v;
+    return verification;
   // Per-sample terms summed in index order: the same for any thread count.
-  const std::vector<double> closeness = sampleCloseness(target, s, R, t, num_threads);
+  const std::vector<double> closeness =
+      sampleCloseness(target, samples, R, t, num_threads);
   double inliers = 0.0, sum = 0.0, total = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {
     const double c = closeness[static_cast<std::size_t>(i)];
@@ -153,22 +155,22 @@ PoseVerification verifyPose(const PointIndex& target, const VerificationSamples&
     total += weights[i];
   }
   if (!(total > 0.0))
-    return v;
-  v.inlier_fraction = inliers / total;
-  v.score = sum / total;
+    return verification;
+  verification.inlier_fraction = inliers / total;
+  verification.score = sum / total;
   if (with_normals) {
     Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
     for (Eigen::Index i = 0; i < n; ++i)
       if (closeness[static_cast<std::size_t>(i)] > 0.0)
-        M += weights[i] * s.normals.col(i) * s.normals.col(i).transpose();
-    v.constraint = std::max(
+        M += weights[i] * samples.normals.col(i) * samples.normals.col(i).transpose();
+    verification.constraint = std::max(
         0.0,
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(M / total).eigenvalues()[0]);
   }
   if (free_space && free_space->bandwidth > 0)
-    v.free_space_violation =
-        freeSpaceViolation(*free_space, samples, weights, R, t, num_threads);
-  return v;
+    verification.free_space_violation =
+        freeSpaceViolation(*free_space, points, weights, R, t, num_threads);
+  return verification;
 }
 
 } // namespace pcl::phaser
