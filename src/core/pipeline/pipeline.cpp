@@ -99,8 +99,7 @@ void addSurfaceModel(TargetModel& model, const Eigen::Matrix3Xd& points,
   const double radius = kVerificationVoxels * coarse_voxel;
   model.index = thinnedIndex(points, patches, radius);
   if (params.sensor_centered) {
-    model.reach_index =
-        thinnedIndex(points, patches, kPolishReachVoxels * coarse_voxel);
+    model.reach_index = thinnedIndex(points, patches, kReachVoxels * coarse_voxel);
     model.samples = verificationSamples(points, radius);
     model.sample_weights = orientationWeights(patches, model.samples);
   }

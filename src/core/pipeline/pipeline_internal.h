@@ -65,7 +65,7 @@ public:
   SpatialSpectrum coarse, fine;
   double coarse_energy = 0.0, fine_energy = 0.0; ///< spectrumEnergy of coarse and fine
   PointIndex index;                              ///< target points, for verifyPose
-  PointIndex reach_index; ///< at kPolishReachVoxels (sensor-centered only)
+  PointIndex reach_index; ///< at kReachVoxels (sensor-centered only)
   double thickness = 0.0; ///< SurfacePatches::thickness of the target
   FreeSpace free_space; ///< what the target's sensor saw through (sensor-centered only)
   /** Evenly spaced target points with their orientation weights, for the reverse
@@ -93,7 +93,7 @@ constexpr double kVerificationVoxels = 0.5;
 /** Radius, in coarse voxels, of the index the local refinement takes its first step
  *  against: a coarse translation peak can be a voxel off, twice the verification
  *  radius, and the few samples then within it (the ground) can walk the climb away. */
-constexpr double kPolishReachVoxels = 1.0;
+constexpr double kReachVoxels = 1.0;
 
 /** The verification index and pass-1 occupancy keep one point per cube of their
  *  radius (voxel) / kIndexThinning. */
@@ -137,7 +137,7 @@ constexpr int kPeakSeparation = 3;
 constexpr int kSpareOrientationPeaks = 10;
 
 /** Gauss-Newton steps of the local refinement on the verification samples. */
-constexpr int kPolishIterations = 10;
+constexpr int kLocalRefinementSteps = 10;
 
 /** The source seen from a pose's viewpoint: its spectrum (with its support when the
  *  normalized refinement needs it) and the residual rotation grid with its peak. */

@@ -167,7 +167,7 @@ Pose refineOnSamples(const SourceContext& source, const Pose& pose, StageTimes& 
   const auto start = Clock::now();
   const TargetModel& target = source.target;
   const RigidPose refined = refinePoseWithin(
-      target.index, source.samples, pose, kPolishIterations, kHypothesisSeparation,
+      target.index, source.samples, pose, kLocalRefinementSteps, kHypothesisSeparation,
       2.0 * target.coarse.grid.voxel_size, &target.reach_index);
   times.verification += msSince(start);
   if (refined.R == pose.R && refined.t == pose.t)
@@ -343,20 +343,25 @@ void rotationSamples(const So3CorrelationGrid& C, const So3GridIndex& peak,
   }
 }
 
+/** The source seen from \a pose: its spectrum, with its support when the normalized
+ *  refinement needs it. */
+std::shared_ptr<Viewpoint> viewFrom(const SourceContext& source, const RigidPose& pose,
+                                    StageTimes& times)
+{
+  auto view = std::make_shared<Viewpoint>();
+  view->H = sourceSpectrum(
+      (pose.R * source.points).colwise() + pose.t, source.channels, source.params,
+      times, source.params.normalized_refinement ? &view->support : nullptr);
+  return view;
+}
+
 /** The source seen from \a pose: as a refused pass measured it, or measured now; with
  *  the residual grid and its peak in \a pose when no accepted pass left them. */
 std::shared_ptr<const Viewpoint> finalViewpoint(const SourceContext& source, Pose& pose,
                                                 StageTimes& times)
 {
-  const StageParameters& params = source.params;
-  std::shared_ptr<const Viewpoint> view = pose.view;
-  if (!view) {
-    auto measured = std::make_shared<Viewpoint>();
-    measured->H = sourceSpectrum(
-        (pose.R * source.points).colwise() + pose.t, source.channels, params, times,
-        params.normalized_refinement ? &measured->support : nullptr);
-    view = std::move(measured);
-  }
+  const std::shared_ptr<const Viewpoint> view =
+      pose.view ? pose.view : viewFrom(source, pose, times);
   if (pose.grid)
     return view;
   if (view->grid) {
@@ -366,7 +371,7 @@ std::shared_ptr<const Viewpoint> finalViewpoint(const SourceContext& source, Pos
     pose.grid = residualGrid(source, view->H, times);
     // A refined pose is within a grid cell or two: its peak is the one near it.
     pose.peak = pose.verifiable ? pose.grid->argmaxNearIdentity(kHypothesisSeparation)
-                                : pose.grid->argmax(params.num_threads);
+                                : pose.grid->argmax(source.params.num_threads);
   }
   return view;
 }
@@ -448,10 +453,7 @@ Pose reprojectionPasses(const SourceContext& source, Pose pose, int& passes,
   const double settled = 0.25 * source.target.fine.grid.voxel_size;
   for (int pass = 1; pass < params.passes; ++pass) {
     // With the support the final refinement needs: a refused pass hands it over.
-    auto view = std::make_shared<Viewpoint>();
-    view->H = sourceSpectrum((pose.R * source.points).colwise() + pose.t,
-                             source.channels, params, times,
-                             params.normalized_refinement ? &view->support : nullptr);
+    std::shared_ptr<Viewpoint> view = viewFrom(source, pose, times);
     const std::shared_ptr<So3CorrelationGrid> C = residualGrid(source, view->H, times);
     Pose next;
     next.verifiable = pose.verifiable;
