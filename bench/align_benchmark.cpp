@@ -288,9 +288,10 @@ int main(int argc, char** argv)
   const bool normalized = !pcl::console::find_switch(argc, argv, "-plain");
   const bool busy = pcl::console::find_switch(argc, argv, "-busy");
   params.normalized_refinement = normalized;
-  if (reps < 1 || !pcl::phaser::validateParameters(params).empty()) {
-    pcl::console::print_error("repetitions must be >= 1, bandwidth in [1, 256] and "
-                              "orientation candidates in [0, 20]\n");
+  const std::string problem = pcl::phaser::validateParameters(params);
+  if (reps < 1 || !problem.empty()) {
+    pcl::console::print_error("%s\n",
+                              reps < 1 ? "repetitions must be >= 1" : problem.c_str());
     return 1;
   }
   int first_threads = 0;

@@ -55,8 +55,8 @@ const int icp_normal_neighbors = 15;
 const double icp_voxel_fraction = 0.25;
 const int default_width = 1024, default_height = 768;
 const char* const default_demo_overlay = "phaser_demo_overlay.pcd";
-// The demo passes when the global stage and ICP are this close to the truth (seed 1:
-// 0.46 deg / 6.8 cm, then 0.03 deg / 0.9 cm; doc/benchmarks.md section 6).
+// The demo passes when the global stage and ICP are this close to the truth (seed 1's
+// figures: doc/benchmarks.md, *The embedded demo*).
 const double demo_rre_deg = 1.0, demo_rte_m = 0.2;
 const double demo_icp_rre_deg = 0.1, demo_icp_rte_m = 0.02;
 

@@ -5,7 +5,8 @@
  * The engine's work sharing (src/core/parallel.h): every index once, slots unique among
  * the threads at work, exceptions passed on after the chunks in flight, nested and
  * concurrent calls. (That a parked worker does not hold the caller up is a property of
- * the timing; doc/benchmarks.md 11.18 measures it with a busy core.)
+ * the timing; doc/benchmarks.md, *Threads and a busy core*, measures it with a busy
+ * core.)
  */
 #include "support/parallel.h"
 

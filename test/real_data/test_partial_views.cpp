@@ -5,7 +5,7 @@
  * Partial views: the source is an azimuth wedge of a real scan (what a sensor with a
  * narrower horizontal field of view sees) under a random large pose. The re-projection
  * passes must refine the chosen hypothesis rather than jump to another peak of the
- * wedge's correlation (doc/benchmarks.md section 9.5).
+ * wedge's correlation.
  */
 #include "protocol.h"
 #include "real_data_support.h"
@@ -67,7 +67,7 @@ TEST(PartialViews, QuarterWedgeRegistersAndConverges)
 }
 
 // A 36 deg wedge of the KITTI scan (centered at 40.67 deg azimuth) under a pure
-// rotation: pose 2 of `-conditions overlap:0.1 -t_max 0` (benchmarks.md 9.17). Pass 1's
+// rotation: pose 2 of `-conditions overlap:0.1 -t_max 0`). Pass 1's
 // best pose meets every limit but a distinct hypothesis ranks about as high; the
 // further translation peaks of every rotation then hold the right pose, which wins and
 // converges. With them tried only when nothing meets the limits, this ended at

@@ -142,7 +142,7 @@ TEST(AutomaticCenter, LidarScansUnderRandomPoses)
 
 TEST(AutomaticCenter, KinectFrameUsesTheCentroid)
 {
-  // A 57 x 43 deg camera frame: its centroid (doc/benchmarks.md section 8: about the
+  // A 57 x 43 deg camera frame: its centroid (about the
   // sensor origin range-only registration succeeds 3/5, about the centroid 5/5).
   PCL_PHASER_REQUIRE_DATA("pcl/frame_20121214T142255.814212.pcd");
   EXPECT_EQ(automaticRandomPoses("pcl/frame_20121214T142255.814212.pcd", 3), 3);

@@ -171,8 +171,8 @@ TEST(RealScans, KittiSyntheticRandomPoses)
 // PSNR 40 dB (0.8 m of noise per axis on this downsampled KITTI scan) leaves the
 // surfaces thin enough to verify, but every pose, the right one included, puts samples
 // in space the target saw through and breaks the free-space limit. Ranked by
-// verification, a 180 deg pose whose samples land where the target saw nothing won
-// (benchmarks.md 9.12). Now, among poses outside the limits, one that matches less than
+// verification, a 180 deg pose whose samples land where the target saw nothing won.
+// Now, among poses outside the limits, one that matches less than
 // half as much as the best-matching hypothesis ranks below it, and the range peak wins.
 TEST(RealScans, HeavyNoiseKeepsTheRangePeak)
 {
@@ -398,7 +398,7 @@ TEST(RealScans, SecondRotationHypothesisRescuesAMirrorPeak)
 
 TEST(RealScans, HalfViewFindsItsRotationAmongTheSpareOrientationPeaks)
 {
-  // Pose 4 of the 50 % overlap sweep on the HDL-32 scan (benchmarks.md 9.19): the half
+  // Pose 4 of the 50 % overlap sweep on the HDL-32 scan: the half
   // of the scan about azimuth 97.3 deg, seen from a pose 1.8 m away. None of the 13
   // pass-1 rotations is within 15 deg of the truth: the range peaks are lost to the
   // half view, and the ten orientation peaks are the scene's 90, 120 and 180 deg
@@ -425,7 +425,7 @@ TEST(RealScans, HalfViewFindsItsRotationAmongTheSpareOrientationPeaks)
 
 TEST(RealScans, NarrowViewPolishReachesFromACoarseTranslationPeak)
 {
-  // Pose 2 of the 10 % overlap sweep on the KITTI scan (benchmarks.md 9.21): a 36 deg
+  // Pose 2 of the 10 % overlap sweep on the KITTI scan: a 36 deg
   // sector about azimuth 40.7 deg, mostly road, seen from a pose 1.6 m away. An
   // orientation peak 2.8 deg from the truth gets a coarse translation peak 1-2 m off
   // (the coarse voxel is 2.4 m). From there a polish against the verification radius
@@ -497,9 +497,9 @@ TEST(RealScans, CovarianceConsistentOnKitti)
   ASSERT_GE(converged, 12);
   EXPECT_GE(inside, 0.7 * converged);
   EXPECT_LT(sum_full / converged, 15.0);
-  // The covariance of the final pose's own fit (issue 30): mean 6-D NEES 2.8, mean
+  // The covariance of the final pose's own fit: mean 6-D NEES 2.8, mean
   // translation NEES 1.3 here (the spectral covariance before it gave 0.27 for the
-  // translation, doc/benchmarks.md section 9.5), well above the old block width's 0.02.
+  // translation), well above the old block width's 0.02.
   EXPECT_GT(sum_translation / converged, 0.1);
   EXPECT_LT(sum_translation / converged, 12.0);
 }

@@ -37,7 +37,7 @@ const Eigen::Vector3d kOdometryDrift(0.001184, 0.0003174, 0.0001413);
  *  calibrated covariance exceeds it on any of them with probability under 0.8 %. */
 constexpr double kMaxNees = 22.46;
 /** The mean of seven chi-square (6 dof) values is 6 +- 1.3 (one standard deviation):
- *  about three standard deviations either way. Measured (session of this test): 7
+ *  about three standard deviations either way. Measured when this test was written: 7
  *  converged, mean 4.86, largest 9.17; the spectral covariance before it gave a mean
  *  of 1.07 (too cautious: its rotation block was 5-10 times too wide). */
 constexpr double kMinMeanNees = 2.5;

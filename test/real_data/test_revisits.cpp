@@ -223,7 +223,7 @@ TEST(Revisits, ConvergedMeansRightOnASymmetricScene)
 
 // A 90 deg sector of a scan, as a sensor with a narrow field of view would see it,
 // against a full scan of the same yard 12 m away (full36 -> full108; the sector of
-// the partial-revisit study, benchmarks.md 9.11). No pass-1 hypothesis is near the
+// the partial-revisit study). No pass-1 hypothesis is near the
 // right pose, and the 180 deg mirror of the yard meets every verification limit;
 // a pose that breaks a limit ranks higher, so the evidence does not single out the
 // mirror, and hasConverged() must not claim it.
@@ -234,7 +234,7 @@ TEST(Revisits, NarrowViewOfASymmetricYardDoesNotClaimTheMirror)
 }
 
 // A 90 deg sector of full6 against full78, 13.5 m away (a sector of the partial-revisit
-// study, -source-wedge 0.25, benchmarks.md 9.11). No pass-1 hypothesis is near the
+// study, -source-wedge 0.25). No pass-1 hypothesis is near the
 // right pose; the 180 deg flip of the yard meets every verification limit and ranks
 // above every other hypothesis, but by less than the choice of the sector's few hundred
 // samples explains (runner_up_error), so hasConverged() must not claim it.
@@ -248,7 +248,7 @@ TEST(Revisits, NarrowViewFlipThatBarelyOutranksTheRunnerUpDoesNotConverge)
 // is 1.75 m off, before the final refinement: it has the most inliers (0.43) and the
 // highest rank (0.29), but its constraint (0.025) is below the limit, while a 90 deg
 // pose with half as many inliers (rank 0.01) lies just inside every limit. Ranked by
-// the limits first, that pose won pass 1 and the pair failed (benchmarks.md 9.18);
+// the limits first, that pose won pass 1 and the pair failed;
 // ranked by the evidence, the right pose wins and is refined to centimeters.
 TEST(Revisits, PassOneRanksAnUnrefinedRightPoseByItsEvidenceNotByTheLimits)
 {

@@ -46,7 +46,7 @@ TEST(PhaserRegistration, RecoversKnownPoseSensorOrigin)
       phaser.align(out);
       ASSERT_TRUE(phaser.hasConverged());
       // On this small synthetic room the normalized refinement costs up to 0.3 deg (it
-      // gains on the real scans and the simulated LiDAR pairs: doc/benchmarks.md 6).
+      // gains on the real scans and the simulated LiDAR pairs).
       EXPECT_LT(rotationErrorDeg(phaser.getFinalTransformation(), T),
                 normalized ? 0.75 : 0.5);
       EXPECT_LT(translationError(phaser.getFinalTransformation(), T), 0.05);

@@ -6,7 +6,7 @@
  * and pitched against each other (the demo pairs: 2-4 m and 100-160 deg apart, up to
  * 3 deg of roll and pitch): with the energy-normalized refinement the global stage
  * recovers the rotation within 1 deg; the plain correlation leans 1.2-1.4 deg towards
- * equal tilt (doc/benchmarks.md section 6).
+ * equal tilt (doc/benchmarks.md, *The figures behind the defaults*).
  */
 #include "scan_simulator.h"
 
@@ -126,7 +126,7 @@ TEST(TiltedPair, NormalizedRefinementInASinglePass)
   std::printf("  one pass, normalized: RRE %.3f deg\n", rre);
   EXPECT_TRUE(R.allFinite());
   EXPECT_GT(e.diagnostics.times.target, 0.0);
-  EXPECT_LT(rre, 10.0); // one pass is parallax-limited (doc/benchmarks.md section 3)
+  EXPECT_LT(rre, 10.0); // one pass is parallax-limited
   // The target model prepared with the supports is reused for the same parameters and
   // prepared again, without them, for the plain refinement.
   const pcl::phaser::PhaserResult again =
