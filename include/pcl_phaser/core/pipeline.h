@@ -41,7 +41,7 @@ struct Verification {
   double inlier_fraction = 0.0;      ///< share with a target point within the radius
   double score = 0.0;                ///< the share weighted by closeness
   double free_space_violation = 0.0; ///< share where the target's sensor saw through
-  double reverse_free_space_violation = 0.0; ///< the same, target in source
+  double reverse_free_space_violation = 0.0; ///< target samples the source saw through
   /** \brief How well the matches pin the translation in every direction: the smallest
    *  eigenvalue of the inliers' normalized sum w n n^T, [0, 1/3]; 0 without normals. */
   double constraint = 0.0;
@@ -72,8 +72,7 @@ struct PhaserDiagnostics {
   /** \brief Highest rank of a hypothesis distinct from the final pose (over 10 deg or
    *  two coarse voxels away); -infinity: none. */
   double runner_up_rank = -std::numeric_limits<double>::infinity();
-  /** \brief Standard error of the rank difference to the runner-up (0: none). */
-  double runner_up_error = 0.0;
+  double runner_up_error = 0.0;     ///< std. error of the rank gap (0: none, centroids)
   double verification_radius = 0.0; ///< meters: half the coarse voxel
   int verification_samples = 0;     ///< source samples verified
   /** \brief Enough samples and, about sensor origins, verification within
