@@ -5,14 +5,9 @@
 #pragma once
 
 /** \file
- *  Opt-in header for point types that libpcl_phaser does not instantiate (it ships
- *  PointXYZ, PointXYZI, PointXYZRGB, PointXYZRGBA, PointNormal and PointXYZINormal).
- *  Including it makes pcl::PhaserRegistration<MyPoint, MyPoint> usable for any
- * registered point type with x, y, z, whether or not PCL_NO_PRECOMPILE is defined: it
- * brings the template definitions of PhaserRegistration and of the PCL pieces
- * pcl::Registration needs for a new type (PCLBase, the kd-tree search). Those make
- * every translation unit that includes it much slower to compile, which is why the
- * main header does not include it.
+ *  Opt-in (slow to compile) header: makes pcl::PhaserRegistration usable for any
+ *  registered point type with x, y, z beyond those libpcl_phaser instantiates
+ *  (PointXYZ, PointXYZI, PointXYZRGB, PointXYZRGBA, PointNormal, PointXYZINormal).
  */
 
 #include <pcl_phaser/impl/phaser_registration.hpp>

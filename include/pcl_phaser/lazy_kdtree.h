@@ -14,14 +14,9 @@ namespace pcl {
 namespace phaser {
 
 /** \brief A pcl::search::KdTree that builds its index at the first search after
- *  setInputCloud(), not in it.
- *
- *  pcl::Registration::align() hands every new target to its search tree before
- *  computeTransformation() runs; PhaserRegistration never searches it, only
- *  getFitnessScore() (its own or pcl::Registration's) does. With this tree an align()
- *  does not pay for an index nobody may query (about 10-15 ms for a 70k-120k-point
- *  scan). Searches from several threads are safe, as with pcl::search::KdTree; a
- *  setInputCloud() concurrent with a search is not. */
+ *  setInputCloud(), not in it, so that align() does not pay for an index only
+ *  getFitnessScore() uses. Concurrent searches are safe; setInputCloud() during one is
+ *  not. */
 template <typename PointT>
 class LazyKdTree : public pcl::search::KdTree<PointT> {
 public:
@@ -40,7 +35,7 @@ public:
     built_.store(false, std::memory_order_release);
   }
 
-  /** \brief pcl::search::KdTree::nearestKSearch, after building the index if needed. */
+  /** \brief Builds the index if needed, then searches. */
   int nearestKSearch(const PointT& point, int k, Indices& k_indices,
                      std::vector<float>& k_sqr_distances) const override
   {
@@ -48,7 +43,7 @@ public:
     return Base::nearestKSearch(point, k, k_indices, k_sqr_distances);
   }
 
-  /** \brief pcl::search::KdTree::radiusSearch, after building the index if needed. */
+  /** \brief Builds the index if needed, then searches. */
   int radiusSearch(const PointT& point, double radius, Indices& k_indices,
                    std::vector<float>& k_sqr_distances,
                    unsigned int max_nn = 0) const override
@@ -58,9 +53,7 @@ public:
   }
 
 private:
-  /** Builds the index of the kept cloud once. The tree is never created const
-   *  (pcl::Registration holds it through a pointer to non-const), so the const_cast
-   *  only lets a const search fill the index it is about to read. */
+  // The tree is never created const: the const_cast only lets a search fill its index.
   void build() const
   {
     if (built_.load(std::memory_order_acquire))

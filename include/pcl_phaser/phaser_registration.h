@@ -17,45 +17,30 @@
 namespace pcl {
 
 /** \brief PhaserRegistration: correspondence-free global registration of two point
- * clouds by spherical and spatial phase correlation (PHASER).
- *
- *  \details The rotation comes from correlating the spherical-harmonic spectra of the
- * two clouds, projected on the sphere about a center, on SO(3), beside the correlation
- * of their surface-orientation histograms; the translation from a 3-D FFT correlation
- * of the voxelized clouds. Every hypothesis is verified geometrically and the best one
- * wins; hasConverged() means the final pose verified (pcl::phaser::PhaserResult::
- * converged). No normals, features or correspondences are needed, so it replaces
- * pcl::SampleConsensusInitialAlignment as the global initializer ahead of
- * pcl::IterativeClosestPoint:
+ *  clouds by spherical and spatial phase correlation (PHASER): the rotation from the
+ *  spherical-harmonic spectra correlated on SO(3), the translation from a 3-D FFT
+ *  correlation of the voxelized clouds, every hypothesis verified geometrically.
+ *  Needs no normals, features or correspondences: a global initializer for
+ *  pcl::IterativeClosestPoint:
  *  \code
  *  pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> phaser;
  *  phaser.setInputSource(source);
  *  phaser.setInputTarget(target);
  *  pcl::PointCloud<pcl::PointXYZ> aligned;
  *  phaser.align(aligned);
- *  if (phaser.hasConverged()) {
- *    pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ> icp;
- *    icp.setInputSource(source);
- *    icp.setInputTarget(target);
+ *  if (phaser.hasConverged()) // the final pose verified; refine it by ICP
  *    icp.align(aligned, phaser.getFinalTransformation());
- *  }
  *  \endcode
- *
- *  Conventions: getFinalTransformation() maps source points into the target frame
- *  (p_target = T p_source). A \a guess passed to align() is applied to the source first
- *  and the estimate is composed with it. Non-finite points are skipped; \a indices_
- *  selects the source points used for the estimate, while the output is the whole
- *  transformed input, with normals rotated for point types that carry them. What
- *  depends only on the target (its spectra) is cached until setInputTarget(), or until
- *  a parameter it depends on changes. Every setting is a field of
- *  pcl::phaser::PhaserParameters (setParameters()); everything an align() measured is
- * in getResult().
+ *  getFinalTransformation() maps source into target (p_target = T p_source), composed
+ *  with the \a guess of align(). Non-finite points are skipped; \a indices_ selects
+ *  the source points estimated from; the output is the whole transformed input
+ *  (normals rotated). The target's spectra are cached (per parameters) until
+ *  setInputTarget(). Settings: pcl::phaser::PhaserParameters; measurements:
+ *  getResult().
  *
  *  Reference: L. Bernreiter, L. Ott, J. Nieto, R. Siegwart, C. Cadena, "PHASER: a
- * Robust and Correspondence-free Global Pointcloud Registration", IEEE Robotics and
- * Automation Letters 6(2), 2021.
- *
- *  \author the pcl_phaser developers
+ *  Robust and Correspondence-free Global Pointcloud Registration", IEEE Robotics and
+ *  Automation Letters 6(2), 2021.
  *  \ingroup registration
  */
 template <typename PointSource, typename PointTarget, typename Scalar = float>
@@ -84,33 +69,27 @@ public:
   using Base::transformation_;
   using Base::tree_;
 
-  /** \brief Where the clouds are projected on the sphere
-   * (pcl::phaser::ProjectionCenter).
-   */
+  /** \brief Where the clouds are projected on the sphere. */
   using ProjectionCenter = pcl::phaser::ProjectionCenter;
 
   PhaserRegistration()
   {
     reg_name_ = "PhaserRegistration";
-    // align() hands each new target to the search tree, which only getFitnessScore()
-    // uses: build its index then, not at every align().
+    // Only getFitnessScore() searches the tree: build its index then.
     tree_.reset(new pcl::phaser::LazyKdTree<PointTarget>);
   }
   ~PhaserRegistration() override = default;
 
-  /** \brief Provide the source cloud (the one to be aligned). A null or empty cloud is
-   *  refused with PCL_ERROR and drops the previous one, so the next align() fails.
+  /** \brief Provide the source cloud; a null or empty one fails the next align().
    *  \param[in] cloud the source cloud */
   void setInputSource(const PointCloudSourceConstPtr& cloud) override;
 
-  /** \brief Provide the target cloud; drops the cached target. A null or empty cloud is
-   *  refused with PCL_ERROR and drops the previous one, so the next align() fails.
+  /** \brief Provide the target cloud; a null or empty one fails the next align().
    *  \param[in] cloud the target cloud */
   void setInputTarget(const PointCloudTargetConstPtr& cloud) override;
 
-  /** \brief Set every setting at once (pcl::phaser::PhaserParameters, ranges in
-   *  pcl::phaser::kParameterRanges). Here and in every setter, a value out of its range
-   *  is refused with PCL_ERROR naming it; the previous settings are kept.
+  /** \brief Set every setting. Here and in every setter, a value out of its range
+   *  (pcl::phaser::kParameterRanges) is refused with PCL_ERROR; nothing changes.
    *  \param[in] params the settings */
   void setParameters(const pcl::phaser::PhaserParameters& params)
   {
@@ -119,8 +98,7 @@ public:
   /** \brief The settings in use. */
   const pcl::phaser::PhaserParameters& getParameters() const { return params_; }
 
-  /** \brief Set the spherical bandwidth B (PhaserParameters::bandwidth, default 64).
-   *  \param[in] bandwidth the bandwidth */
+  /** \brief Set the spherical bandwidth B (default 64). \param[in] bandwidth B */
   void setBandwidth(int bandwidth)
   {
     pcl::phaser::PhaserParameters params = params_;
@@ -130,8 +108,7 @@ public:
   /** \brief Get the spherical bandwidth. */
   int getBandwidth() const { return params_.bandwidth; }
 
-  /** \brief Set the number of worker threads (0, the default: one per hardware
-   *  thread); results are bit-identical for any count.
+  /** \brief Set the worker threads (default 0: one per hardware thread).
    *  \param[in] nr_threads number of threads */
   void setNumberOfThreads(unsigned int nr_threads)
   {
@@ -145,8 +122,7 @@ public:
     return static_cast<unsigned int>(params_.num_threads);
   }
 
-  /** \brief Set where both clouds are projected on the sphere (default SensorOrigin;
-   *  getResult().projection_center tells what Automatic chose).
+  /** \brief Set where both clouds are projected (default SensorOrigin).
    *  \param[in] center the projection center */
   void setProjectionCenter(ProjectionCenter center)
   {
@@ -164,11 +140,11 @@ public:
   /** \brief Fuse the ambient field (Ouster near-IR) when present (default true).
    *  \param[in] use whether to fuse it */
   void setUseAmbient(bool use) { setChannel(phaser::CHANNEL_AMBIENT, use); }
-  /** \brief Fuse color (as luminance) when both point types have rgb/rgba (default
-   *  true). \param[in] use whether to fuse it */
+  /** \brief Fuse color (as luminance) when present (default true).
+   *  \param[in] use whether to fuse it */
   void setUseColor(bool use) { setChannel(phaser::CHANNEL_COLOR, use); }
-  /** \brief The channels the next align() fuses (pcl::phaser::Channel flags): range
-   * plus those both point types carry and that are switched on. */
+  /** \brief The pcl::phaser::Channel flags the next align() fuses: range plus those
+   *  both point types carry and that are switched on. */
   std::uint32_t getFusedChannels() const
   {
     return (params_.channels | phaser::CHANNEL_RANGE) &
@@ -176,33 +152,23 @@ public:
            phaser::availableChannels<PointTarget>();
   }
 
-  /** \brief What the last align() found: the transformation, whether it converged,
-   *  the center used, the covariance inputs, and in diagnostics its scores,
-   *  verification, hypotheses (in the caller's frames) and stage times. */
+  /** \brief What the last align() found and measured. */
   const pcl::phaser::PhaserResult& getResult() const { return result_; }
 
-  /** \brief Bingham distribution of the rotation of the last align()
-   *  (pcl::phaser::rotationUncertainty); computed on first call. */
+  /** \brief pcl::phaser::rotationUncertainty() of the last align(). */
   const pcl::phaser::BinghamDistribution& getRotationUncertainty() const;
 
-  /** \brief 6x6 covariance of the pose error of the last align(), ordered (rotation
-   *  vector [rad], translation [m]) for omega = Log(R_true R_est^T) and nu = t_true -
-   *  t_est (pcl::phaser::poseCovariance): from the final pose's own point-to-plane fit,
-   *  calibrated on real revisits; zero unless hasConverged(). */
+  /** \brief pcl::phaser::poseCovariance() of the last align(); zero unless
+   *  hasConverged(). */
   Eigen::Matrix<double, 6, 6> getCovariance() const;
 
-  /** \brief Mean squared distance from the transformed source to its nearest target
-   *  point, over pairs whose squared distance is <= \a max_range;
-   *  `std::numeric_limits<double>::max()` when there is none. Unlike the base class in
-   *  PCL 1.13 this skips non-finite source points (Debian's PCL aborts on NaN queries).
-   *  The base version is not virtual: a call through a pcl::Registration pointer runs
-   *  PCL's.
+  /** \brief As pcl::Registration's (which is not virtual), but skipping non-finite
+   *  source points; `std::numeric_limits<double>::max()` when no pair counts.
    *  \param[in] max_range maximum squared distance of a pair that counts */
   double getFitnessScore(double max_range = std::numeric_limits<double>::max());
 
 protected:
-  /** \brief Estimate the transformation and transform the whole input into \a output.
-   */
+  /** \brief Estimate the transformation; the whole input, moved, into \a output. */
   void computeTransformation(PointCloudSource& output, const Matrix4& guess) override;
 
 private:
@@ -212,12 +178,10 @@ private:
     params.channels = use ? (params.channels | channel) : (params.channels & ~channel);
     setParameters(params);
   }
-  /** \brief params_ = \a params when they are valid, else PCL_ERROR from \a setter. */
   void setValid(const pcl::phaser::PhaserParameters& params, const char* setter);
 
   pcl::phaser::PhaserParameters params_;
-  /** \brief The target as the engine keeps it (with its cached spectra); null until the
-   *  next align() after setInputTarget() or a change of channels. */
+  /// null until the next align() after setInputTarget() or a change of channels
   std::shared_ptr<const pcl::phaser::Target> target_model_;
   pcl::phaser::PhaserResult result_;
   mutable std::shared_ptr<pcl::phaser::BinghamDistribution> rotation_uncertainty_;

@@ -9,19 +9,14 @@
 #include <cstdint>
 #include <type_traits>
 
-// Ouster-style drivers register these field tags; PCL 1.13 does not. Declaring them
-// here makes has_field<PointT, tag> false for types without them instead of a compile
-// error.
+// Ouster field tags, unknown to PCL: declared so that has_field can test for them.
 namespace pcl {
 namespace fields {
 struct reflectivity;
 struct ambient;
 } // namespace fields
-} // namespace pcl
 
-namespace pcl {
-/** \brief Helpers of pcl::PhaserRegistration that need PCL: the channels a point type
- *  carries and their values. */
+/** \brief The point channels of pcl::PhaserRegistration. */
 namespace phaser {
 
 /** \brief The signal channels PhaserRegistration fuses, as bit flags. */
@@ -33,17 +28,14 @@ enum Channel : std::uint32_t {
   CHANNEL_COLOR = 1u << 4         ///< luminance of `rgb`/`rgba`
 };
 
-/** \brief Which channels a point type carries. Specialize it for a type whose fields
- *  PCL's traits cannot see, or to hide a field from the registration:
+/** \brief Which channels a point type carries; specialize it to show or hide fields:
  *  \code
  *  template <> struct pcl::phaser::PointChannels<MyPoint> {
  *    static constexpr bool intensity = false;  // not a return strength in MyPoint
  *    static constexpr bool reflectivity = true, ambient = false, color = false;
  *  };
  *  \endcode
- *  Range always comes from xyz, never from a `range` field: drivers disagree on its
- * unit (PCL's PointWithRange stores meters as float, Ouster stores millimeters as
- * uint32). */
+ *  Range always comes from xyz, never from a `range` field (units differ). */
 template <typename PointT>
 struct PointChannels {
   static constexpr bool intensity = pcl::traits::has_intensity_v<PointT>;
@@ -64,8 +56,7 @@ constexpr std::uint32_t availableChannels()
          (C::ambient ? CHANNEL_AMBIENT : 0u) | (C::color ? CHANNEL_COLOR : 0u);
 }
 
-/** \brief Value of one non-range channel of a point; only the branches for fields the
- * type has are instantiated. */
+/** \brief Value of one non-range channel of a point (0 when the type lacks it). */
 template <Channel channel, typename PointT>
 float channelValue(const PointT& p)
 {

@@ -2,12 +2,8 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * Bingham distribution on unit quaternions (Bingham 1974): the rotational uncertainty
- * of a PHASER correlation peak (Bernreiter et al., RA-L 2021).
- *
- * Quaternions are Eigen::Vector4d in the order (w, x, y, z), Hamilton convention, i.e.
- * Eigen::Vector4d(q.w(), q.x(), q.y(), q.z()) for an Eigen::Quaterniond q; q and -q are
- * the same rotation and have the same Bingham density.
+ * Bingham distribution (Bingham 1974) on unit quaternions, Eigen::Vector4d (w, x, y,
+ * z), Hamilton convention; q and -q have the same density.
  */
 #pragma once
 
@@ -18,8 +14,8 @@
 
 namespace pcl::phaser {
 
-/** \brief Largest |z| the maximum-likelihood fit returns (a single sample gets it): an
- *  angular standard deviation of about 0.08 deg, far below any SO(3) grid spacing. */
+/** \brief Largest |z| the maximum-likelihood fit returns (a single sample gets it):
+ *  an angular standard deviation of about 0.08 deg. */
 constexpr double kMaxBinghamConcentration = 1e6;
 
 /** \brief The normalization constant F(Z) = int_{S^3} exp(sum_i z_i x_i^2) dx (surface
@@ -36,18 +32,14 @@ struct BinghamNormalizer {
 };
 
 /** \brief Exact F(Z), dF/dZ (and optionally the fourth moments) for any real \a z, in
- *  any order: in Hopf coordinates the two circle integrals are Bessel functions, which
- *  leaves a smooth 1-D integral, evaluated by adaptive Gauss-Kronrod quadrature on a
- *  mesh graded towards its boundary layers; relative error <= 3e-13 for |z| <= 1e6. */
+ *  any order; relative error <= 3e-13 for |z| <= 1e6. */
 BinghamNormalizer binghamNormalizer(const Eigen::Vector4d& z,
                                     bool with_fourth_moments = false);
 
 /** \brief Maximum-likelihood concentrations for the scatter eigenvalues \a omega
- *  (non-negative, normalized to sum 1): the solution of (dF/dz_i)/F = omega_i with z =
- * 0 for the largest omega (Bingham 1974), by damped Newton on the convex log F(Z) -
- *  omega . Z. Same order as \a omega, all z in [-kMaxBinghamConcentration, 0]:
- *  omegas below 1 / (2 kMaxBinghamConcentration) are raised to it first. Equal omegas
- *  give equal z.
+ *  (non-negative, normalized to sum 1): (dF/dz_i)/F = omega_i, z = 0 for the largest
+ *  omega. Same order as \a omega, all z in [-kMaxBinghamConcentration, 0]; equal
+ *  omegas give equal z.
  *  \param[out] residual if given, max_i |E[x_i^2] - omega_i| / omega_i over the three
  *  smaller omegas; < 1e-10 when converged
  *  \throws InvalidArgument on negative or non-finite values or a zero sum */
@@ -72,18 +64,15 @@ struct BinghamDistribution {
   /** \brief The mode (last column of M), sign chosen so that w >= 0. */
   Eigen::Vector4d mode() const;
 
-  /** \brief Density at \a q (normalized first; q and -q give the same value). */
+  /** \brief Density at \a q (normalized first). */
   double pdf(const Eigen::Vector4d& q) const;
 
   /** \brief Exact second moment E[q q^T] = M diag(dF / F) M^T (trace 1). */
   Eigen::Matrix4d moment() const;
 
   /** \brief Exact covariance (rad^2) of the rotation-vector error e = 2 atan2(|v|, w)
-   *  v / |v| of a sample's error quaternion (w >= 0) relative to the mode: V
-   *  diag(E[theta^2 n_i^2]) V^T, V the vector parts of the error-frame axes, the
-   *  expectations 2-D integrals evaluated like F. Tends to V diag(-2 / Z_i) V^T when
-   *  concentrated. \param[in] frame side of the error; local = R_mode^T global R_mode
-   */
+   *  v / |v| of a sample's error quaternion (w >= 0) relative to the mode.
+   *  \param[in] frame side of the error; local = R_mode^T global R_mode */
   Eigen::Matrix3d tangentCovariance(TangentFrame frame = TangentFrame::kGlobal) const;
 };
 
@@ -102,8 +91,7 @@ BinghamDistribution fitBingham(const std::vector<Eigen::Vector4d>& quaternions,
                                const std::vector<double>& weights = {});
 
 namespace detail {
-/** \brief Exponentially scaled modified Bessel function e^{-x} I_n(x), n in {0, 1, 2},
- *  x >= 0 (power series below 20, asymptotic expansion above); exposed for tests. */
+/** \brief e^{-x} I_n(x) (modified Bessel), n in {0, 1, 2}, x >= 0; for tests. */
 double scaledBesselI(int n, double x);
 } // namespace detail
 

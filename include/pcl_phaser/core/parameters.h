@@ -12,76 +12,44 @@ namespace pcl::phaser {
 
 /** \brief Where the clouds are projected on the sphere. */
 enum class ProjectionCenter {
-  SensorOrigin, ///< the origin of each cloud's frame (LiDAR scans in their sensor
-                ///< frame)
+  SensorOrigin, ///< each cloud's frame origin (LiDAR scans in their sensor frame)
   Centroid,     ///< each cloud's centroid (object scans, clouds far from their origin)
-  /** SensorOrigin when both clouds look like spinning-LiDAR scans in their sensor frame
-   *  (they surround their origin in a band with empty poles), else Centroid;
-   *  PhaserResult::projection_center tells which. */
+  /** SensorOrigin when both clouds look like spinning-LiDAR scans about their origin,
+   *  else Centroid (see PhaserResult::projection_center). */
   Automatic
 };
 
-/** \brief Every setting of one registration, with its default. The range, unit and
- *  meaning of each numeric field are in kParameterRanges (and doc/parameters.md);
- *  validateParameters() checks them at each align() and in pcl::PhaserRegistration's
- *  setters. */
+/** \brief Every setting of one registration, with its default; the numeric fields'
+ *  ranges, units, meanings: kParameterRanges, checked by validateParameters(). */
 struct PhaserParameters {
-  /** \brief Spherical bandwidth B: the sphere is sampled on a 2B x 2B grid and the
-   *  SO(3) grid spacing is pi / B before refinement. */
-  int bandwidth = 64;
-  int spatial_grid_size = 128; ///< the grid is sized to the target with a margin
-  double voxel_size = 0.0;     ///< 0: from spatial_grid_size and the target's extent
-  /** \brief Newton iterations that refine the rotation peak, on the plain correlation
-   *  and again on the normalized one (normalized_refinement). */
-  int refinement_iterations = 2;
-  int fusion_levels = 5; ///< Laplacian pyramid levels (1: plain average)
-  /** \brief Distinct peaks of the range correlation taken through the translation
-   *  stage in pass 1; more than one matters for symmetric scenes. */
-  int rotation_candidates = 3;
-  /** \brief Passes, at most. Pass 1 projects each cloud about its own center; each
-   *  further pass projects the source, moved by the estimate, about the target's
-   *  center and measures the residual shift on a fine grid over the target's inner
-   *  region. They stop once a shift update is below a quarter of a fine voxel. */
+  int bandwidth = 64;            ///< SO(3) grid spacing pi / B before refinement
+  int spatial_grid_size = 128;   ///< the grid is sized to the target with a margin
+  double voxel_size = 0.0;       ///< 0: from spatial_grid_size and the target's extent
+  int refinement_iterations = 2; ///< and as many again for normalized_refinement
+  int fusion_levels = 5;         ///< Laplacian pyramid
+  int rotation_candidates = 3;   ///< in pass 1; more than one for symmetric scenes
+  /** \brief Passes, at most: each after the first projects the moved source about the
+   *  target's center and refines the shift, until it changes by < 1/4 fine voxel. */
   int passes = 3;
-  /** \brief Worker threads; 0: one per hardware thread (at most 64), PCL's
-   *  convention. Results are bit-identical for any count. */
-  int num_threads = 0;
-  /** \brief Refine the rotation again on the energy-normalized SO(3) correlation,
-   *  within 0.75 deg x 64 / B of the maximum of the plain one, when the clouds are
-   *  projected about their sensor origins (about centroids the plain refinement is
-   *  kept), against the pull of the field-of-view edges toward equal sensor tilt
-   *  (measured on simulated LiDAR pairs). Default true. */
+  int num_threads = 0; ///< results are bit-identical for any count
+  /** \brief About sensor origins, refine the rotation again on the energy-normalized
+   *  SO(3) correlation, within 0.75 deg x 64 / B of the plain maximum, against the pull
+   *  of the field-of-view edges toward equal sensor tilt. */
   bool normalized_refinement = true;
-  /** \brief Rotation hypotheses from the surface-orientation histograms, tried beside
-   *  the range peaks about sensor origins. When the best of them would not be
-   *  claimed, the next ten peaks of the histograms are tried as well. Two scans of
-   *  one place taken apart need them: on real revisits fewer made an align faster
-   *  and failed more of them. */
+  /** \brief Tried beside the range peaks about sensor origins; when the best would not
+   *  be claimed, the next ten histogram peaks as well. */
   int orientation_candidates = 10;
-  int orientation_bandwidth = 32; ///< of the orientation histograms
-  double whitening = 0.5; ///< exponent of the cross-power whitening, translation search
-  /** \brief Where both clouds are projected on the sphere. */
+  int orientation_bandwidth = 32;
+  double whitening = 0.5; ///< exponent of the cross-power whitening
   ProjectionCenter projection_center = ProjectionCenter::SensorOrigin;
-  /** \brief Channel switches: the pcl::phaser::Channel flags of the point fields
-   *  pcl::PhaserRegistration may fuse (those both point types carry); all by default.
-   *  The engine fuses whatever ChannelValues it is given. */
+  /** \brief The pcl::phaser::Channel flags pcl::PhaserRegistration may fuse; the
+   *  engine fuses whatever ChannelValues it is given. */
   std::uint32_t channels = ~0u;
-  /** \brief Verification: least (weighted) share of the source samples with a target
-   *  point within the verification radius whose normal agrees. */
-  double min_inlier_fraction = 0.2;
-  /** \brief Verification about sensor origins: largest share of source samples in
-   *  space the target's sensor saw through, and of target samples in space the
-   *  source's sensor saw through. */
-  double max_free_space_violation = 0.02;
-  /** \brief Verification: least PhaserResult::constraint, the smallest eigenvalue of
-   *  the matched normals' scatter (at most 1/3). */
-  double min_constraint = 0.04;
-  /** \brief About centroids, converged also needs a translation peak score (the
-   *  peak-to-sidelobe ratio of the final 3-D correlation) of at least this ... */
-  double min_peak_score = 20.0;
-  /** \brief ... or half of it with a normalized overlap of at least this (both
-   *  defaults separate right from wrong poses on measured pairs). */
-  double min_normalized_overlap = 0.55;
+  double min_inlier_fraction = 0.2;       ///< weighted; the target's normal must agree
+  double max_free_space_violation = 0.02; ///< about sensor origins, both ways
+  double min_constraint = 0.04;           ///< of diagnostics.verification.constraint
+  double min_peak_score = 20.0;           ///< of diagnostics.translation_score ...
+  double min_normalized_overlap = 0.55;   ///< ... or half that score and this overlap
 };
 
 /** \brief One row of kParameterRanges: a numeric field of PhaserParameters. */
@@ -97,8 +65,7 @@ struct ParameterRange {
   }
 };
 
-/** \brief The legal range of every numeric field of PhaserParameters (the defaults are
- *  the fields' initializers). */
+/** \brief The legal range of every numeric field of PhaserParameters. */
 inline constexpr ParameterRange kParameterRanges[] = {
     // B = 1 keeps only degree 0, a constant on the sphere: no rotation to find.
     {"bandwidth", &PhaserParameters::bandwidth, nullptr, 2, 256, "",
@@ -136,12 +103,11 @@ inline constexpr ParameterRange kParameterRanges[] = {
 /** \brief The row of field \a name in kParameterRanges; null when there is none. */
 const ParameterRange* findParameterRange(const std::string& name);
 
-/** \brief The worker threads \a num_threads stands for: itself, or for 0 one per
- *  hardware thread (at most 64). */
+/** \brief \a num_threads, or for 0 one per hardware thread (at most 64). */
 int resolveThreadCount(int num_threads);
 
-/** \brief Empty when every field of \a p is in its range (kParameterRanges), else the
- *  first field that is not, its value, its range and what it means. */
+/** \brief Empty when every field of \a p is in its range, else the first that is not,
+ *  its value, range and meaning. */
 std::string validateParameters(const PhaserParameters& p);
 
 } // namespace pcl::phaser

@@ -10,9 +10,8 @@
 
 namespace pcl::phaser {
 
-/** \brief Per-point values of the channels fused with the geometry (intensity,
- *  reflectivity, ambient, luminance...), one vector per channel, in the same order for
- *  target and source. Any scale: each channel is normalized per cloud. */
+/** \brief Per-point values of the channels fused with the geometry, one vector per
+ *  channel, in the same order for target and source; any scale. */
 using ChannelValues = std::vector<Eigen::VectorXd>;
 
 } // namespace pcl::phaser

@@ -16,8 +16,7 @@ namespace pcl {
 
 namespace phaser::detail {
 
-/** \brief Appends the value of channel \a C of \a p to \a values[k] when the mask has
- * it. */
+/** \brief Appends channel \a C of \a p to \a values[k] when \a mask has it. */
 template <Channel C, typename PointT>
 void appendChannel(const PointT& p, std::uint32_t mask,
                    pcl::phaser::ChannelValues& values, std::size_t& k, Eigen::Index row)
@@ -76,8 +75,7 @@ void PhaserRegistration<PointSource, PointTarget, Scalar>::setInputSource(
 {
   converged_ = false;
   if (!cloud || cloud->empty()) {
-    // pcl::Registration would keep the previous cloud (or dereference null): refuse,
-    // and drop the previous one so that the next align cannot silently reuse it.
+    // Drop the previous cloud so that the next align cannot silently reuse it.
     PCL_ERROR("[pcl::%s::setInputSource] The source cloud is null or empty.\n",
               getClassName().c_str());
     input_.reset();
