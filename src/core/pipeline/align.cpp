@@ -13,8 +13,7 @@
 
 namespace pcl::phaser {
 
-/** What a Target derives from its points: whether it looks like a LiDAR scan in its
- *  sensor frame, and the model of the last projection center and parameters. */
+/** What a Target derives from its points: looksSensorCentered and the last model. */
 struct Target::Cache {
   std::mutex mutex;
   int sensor_centered = -1; ///< looksSensorCentered about the origin; < 0: not computed
@@ -41,13 +40,7 @@ public:
 
 namespace {
 
-/** Beyond this, float32 coordinates are quantized to more than 6 cm. */
-constexpr double kMaxCoordinate = 1e6;
-
-constexpr const char* kTooFar = "coordinates beyond 1e6 m: float32 resolution is worse "
-                                "than 6 cm there; shift the clouds first (e.g. "
-                                "pcl::demeanPointCloud)";
-
+constexpr double kMaxCoordinate = 1e6; ///< beyond: float32 is coarser than 6 cm
 /** Empty when a cloud can be registered, else why not. */
 std::string checkCloud(const Eigen::Matrix3Xd& points, const ChannelValues& channels,
                        const char* which)
@@ -57,7 +50,8 @@ std::string checkCloud(const Eigen::Matrix3Xd& points, const ChannelValues& chan
   if (!points.allFinite())
     return std::string("the ") + which + " cloud has non-finite points";
   if (points.cwiseAbs().maxCoeff() > kMaxCoordinate)
-    return kTooFar;
+    return "coordinates beyond 1e6 m: float32 resolution is worse than 6 cm there; "
+           "shift the clouds first (e.g. pcl::demeanPointCloud)";
   if ((points.colwise() - points.col(0)).isZero(0.0))
     return std::string("every finite point of the ") + which + " cloud (" +
            std::to_string(points.cols()) +
@@ -74,18 +68,17 @@ std::string checkCloud(const Eigen::Matrix3Xd& points, const ChannelValues& chan
 std::string checkInputs(const Target& target, const SourceCloud& source,
                         const Eigen::Matrix4d& guess, const PhaserParameters& params)
 {
+  const ChannelValues& target_channels = TargetAccess::channels(target);
   std::string problem = validateParameters(params);
   if (problem.empty() && !guess.allFinite())
     problem = "the initial guess is not finite";
   if (problem.empty())
-    problem = checkCloud(target.points(), TargetAccess::channels(target), "target");
+    problem = checkCloud(target.points(), target_channels, "target");
   if (problem.empty())
     problem = checkCloud(source.points, source.channels, "source");
-  if (problem.empty() &&
-      source.channels.size() != TargetAccess::channels(target).size())
+  if (problem.empty() && source.channels.size() != target_channels.size())
     problem = "the source has " + std::to_string(source.channels.size()) +
-              " channels, the target " +
-              std::to_string(TargetAccess::channels(target).size());
+              " channels, the target " + std::to_string(target_channels.size());
   return problem;
 }
 
@@ -102,8 +95,7 @@ bool sameModel(const StageParameters& prepared, const StageParameters& wanted)
          prepared.sensor_centered == wanted.sensor_centered;
 }
 
-/** The center both clouds are projected about; \a moved is the source moved by the
- *  guess, whose sensor origin moves with it. */
+/** The center both clouds are projected about; \a moved: the source with the guess. */
 ProjectionCenter chooseCenter(const Target& target, const Eigen::Matrix3Xd& moved,
                               const Eigen::Matrix4d& guess, ProjectionCenter requested)
 {
@@ -123,8 +115,7 @@ ProjectionCenter chooseCenter(const Target& target, const Eigen::Matrix3Xd& move
              : ProjectionCenter::Centroid;
 }
 
-/** The target model for \a center and \a params, from the cache or prepared (its
- *  time into \a target_ms), and its projection center into \a offset. */
+/** The target model, cached or prepared (into \a target_ms), and its center. */
 std::shared_ptr<const TargetModel>
 targetModel(const Target& target, ProjectionCenter center,
             const StageParameters& params, Eigen::Vector3d& offset, double& target_ms)
@@ -162,25 +153,12 @@ Eigen::Matrix4d callerFrame(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
 /** [a]x, the cross-product matrix of \a a. */
 Eigen::Matrix3d skew(const Eigen::Vector3d& a)
 {
-  Eigen::Matrix3d m;
-  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
-  return m;
+  return (Eigen::Matrix3d() << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0)
+      .finished();
 }
 
-/** \a cov (fitCovariance's error about the target's projection center: q -> Exp(omega)
- *  q + nu0) for the caller's error omega, nu = t_true - t_est, the estimate's
- *  translation being \a a from that center: nu = nu0 + omega x a. */
-Eigen::Matrix<double, 6, 6> aboutTranslation(const Eigen::Matrix<double, 6, 6>& cov,
-                                             const Eigen::Vector3d& a)
-{
-  Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Identity();
-  A.bottomLeftCorner<3, 3>() = -skew(a);
-  return A * cov * A.transpose();
-}
-
-/** Converged means verified and, about centroids (no free-space test), a distinct
- *  translation peak: scans taken meters apart give wider peaks, so a clear overlap
- *  lets half the score suffice. */
+/** Verified and, about centroids, a distinct peak (half the score with a clear overlap:
+ *  scans meters apart give wider peaks). */
 bool converged(const PhaserResult& result, const PhaserParameters& params)
 {
   const PhaserDiagnostics& diagnostics = result.diagnostics;
@@ -201,12 +179,9 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
                    guess.topRightCorner<3, 1>();
   const ProjectionCenter center =
       chooseCenter(target, moved, guess, params.projection_center);
-  StageParameters stage_params;
-  static_cast<PhaserParameters&>(stage_params) = params;
-  stage_params.sensor_centered = center == ProjectionCenter::SensorOrigin;
+  StageParameters stage_params{params, center == ProjectionCenter::SensorOrigin};
   stage_params.num_threads = resolveThreadCount(params.num_threads);
-  // The tilt pull the normalized refinement corrects comes from a scanner's
-  // field-of-view band, seen about its origin; about a centroid there is none.
+  // The tilt pull it corrects comes from a scanner's band, seen about its origin only.
   stage_params.normalized_refinement =
       params.normalized_refinement && stage_params.sensor_centered;
   PhaserResult result;
@@ -226,9 +201,12 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
   if (!result.transformation.allFinite())
     throw InvalidArgument("the estimate is not finite");
   result.lever_arm = pose.R * source_center;
-  result.fit_covariance =
-      aboutTranslation(result.fit_covariance,
-                       result.transformation.topRightCorner<3, 1>() - target_center);
+  // fitCovariance's error q -> Exp(omega) q + nu0 about the target's center for the
+  // caller's nu = t_true - t_est = nu0 + omega x a, a: the translation from there.
+  Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Identity();
+  A.bottomLeftCorner<3, 3>() =
+      -skew(result.transformation.topRightCorner<3, 1>() - target_center);
+  result.fit_covariance = A * result.fit_covariance * A.transpose();
   for (Hypothesis& h : result.diagnostics.hypotheses)
     h.transformation =
         callerFrame(h.rotation, h.translation, source_center, target_center, guess);
@@ -263,15 +241,13 @@ PhaserResult align(const Target& target, const SourceCloud& source,
 
 BinghamDistribution rotationUncertainty(const PhaserResult& result)
 {
-  BinghamDistribution b; // uniform: what is known without an estimate
   const PhaserDiagnostics& diagnostics = result.diagnostics;
-  if (!diagnostics.rotation_samples.empty()) {
-    try {
-      b = fitBingham(diagnostics.rotation_samples, diagnostics.rotation_weights);
-    } catch (const InvalidArgument&) { // all weights zero: a flat block
-    }
+  try {
+    if (!diagnostics.rotation_samples.empty())
+      return fitBingham(diagnostics.rotation_samples, diagnostics.rotation_weights);
+  } catch (const InvalidArgument&) { // all weights zero: a flat block
   }
-  return b;
+  return BinghamDistribution(); // uniform: what is known without an estimate
 }
 
 Eigen::Matrix<double, 6, 6> poseCovariance(const PhaserResult& result,
@@ -285,7 +261,7 @@ Eigen::Matrix<double, 6, 6> poseCovariance(const PhaserResult& result,
     return result.fit_covariance;
   const Eigen::Matrix3d rot = rotationCovariance(rotation, bandwidth);
   // t_est = c_t + delta - R c_s, R_true = Exp(omega) R_est: nu = d_delta + [R c_s]x
-  // omega.
+  // omega
   const Eigen::Matrix3d lever = skew(result.lever_arm);
   cov.topLeftCorner<3, 3>() = rot;
   cov.topRightCorner<3, 3>() = rot * lever.transpose();

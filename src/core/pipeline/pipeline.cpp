@@ -5,43 +5,31 @@
  * The target model, the source context and the order of the stages of one estimate.
  */
 #include "pipeline/pipeline_internal.h"
-#include "support/error.h"
-
-#include <Eigen/Geometry>
-
-#include <algorithm>
-#include <chrono>
-#include <cmath>
 
 namespace pcl::phaser {
 namespace detail {
-
 namespace {
 
-/** Fused spherical spectrum of the \a which cloud, its times into \a times.
- *  \throws InvalidArgument when the cloud carries no spherical signal */
-SphericalSpectrum sphericalSpectrum(const Eigen::Matrix3Xd& points,
-                                    const ChannelValues& channels,
-                                    const PhaserParameters& params, const char* which,
-                                    StageTimes& times, SphericalSupport* support)
-{
-  int observed = 0;
-  SphericalSpectrum F = cloudSphericalSpectrum(
-      points, channels, params.bandwidth, params.fusion_levels, params.num_threads,
-      observed, times.sampling, times.sht, support);
-  if (observed < 2)
-    throw InvalidArgument(
-        std::string(which) +
-        " cloud has fewer than two distinct directions from its "
-        "projection center (empty, all at the center, or a single point)");
-  if (!(spectrumSquaredNorm(F) > 0.0))
-    throw InvalidArgument(std::string(which) + " cloud is constant on the sphere");
-  return F;
-}
+/** Verification radius, in coarse voxels. */
+constexpr double kVerificationVoxels = 0.5;
+/** Radius of the index the local refinement's first step uses: a coarse peak a voxel
+ *  off has too few samples (the ground) within kVerificationVoxels. */
+constexpr double kReachVoxels = 1.0;
+/** The indexes and pass-1 occupancy keep one point per cube of radius / this. */
+constexpr double kIndexThinning = 8.0;
+/** Most verification samples of either cloud: an inlier share from this many has a
+ *  standard error below 0.004 (a LiDAR scan gives about 3,000). */
+constexpr Eigen::Index kMaxVerificationSamples = 16384;
+/** Direction cells of the free-space test (1.4 deg) and its margin in coarse voxels. */
+constexpr int kFreeSpaceBandwidth = 128;
+constexpr double kFreeSpaceMargin = 1.0;
+/** Binary occupancy: the near-sensor density must not vote for stacking the sensors. */
+constexpr double kOccupancySaturation = 0.05;
+/** Patches of the orientation histogram, in coarse voxels. */
+constexpr double kPatchVoxels = 1.0;
 
-/** The target points inside the cube that holds the inner 75% of them (by distance from
- *  the center): after the first pass the residual shift is small, so a fine grid over
- *  the densely observed region measures it best. */
+/** The points in the cube holding the inner 75%: densely observed, for the fine grid.
+ */
 Eigen::Matrix3Xd innerRegion(const Eigen::Matrix3Xd& points)
 {
   std::vector<double> r(points.cols());
@@ -60,8 +48,7 @@ Eigen::Matrix3Xd innerRegion(const Eigen::Matrix3Xd& points)
   return inner;
 }
 
-/** One sample (the centroid) per cube of \a radius, every k-th of them when there are
- *  more than kMaxVerificationSamples (k = ceil(n / kMaxVerificationSamples)). */
+/** One sample per cube of \a radius; every k-th beyond kMaxVerificationSamples. */
 Eigen::Matrix3Xd verificationSamples(const Eigen::Matrix3Xd& points, double radius)
 {
   Eigen::Matrix3Xd all = voxelCentroids(points, radius);
@@ -75,8 +62,7 @@ Eigen::Matrix3Xd verificationSamples(const Eigen::Matrix3Xd& points, double radi
   return kept;
 }
 
-/** \a points indexed at \a radius with their patch normals, one point (the centroid)
- *  per cube of radius / kIndexThinning. */
+/** \a points thinned (kIndexThinning) and indexed at \a radius with patch normals. */
 PointIndex thinnedIndex(const Eigen::Matrix3Xd& points, const SurfacePatches& patches,
                         double radius)
 {
@@ -84,9 +70,7 @@ PointIndex thinnedIndex(const Eigen::Matrix3Xd& points, const SurfacePatches& pa
   return PointIndex(thinned, radius, patchNormalsAt(patches, thinned));
 }
 
-/** The target's surface patches and what derives from them: the orientation histogram,
- *  the thickness, the verification index and, about sensor origins, the reach index
- *  and the weighted samples of the reverse free-space test (one thread). */
+/** The target's surface patches and what derives from them (one thread). */
 void addSurfaceModel(TargetModel& model, const Eigen::Matrix3Xd& points,
                      double coarse_voxel)
 {
@@ -105,8 +89,7 @@ void addSurfaceModel(TargetModel& model, const Eigen::Matrix3Xd& points,
   }
 }
 
-/** The occupancy spectrum of the target's inner region with little padding, the fine
- *  grid of the later passes (one thread). */
+/** The fine grid of the later passes: the inner region, little padding (one thread). */
 void addFineGrid(TargetModel& model, const Eigen::Matrix3Xd& points,
                  SpatialGridParameters grid)
 {
@@ -127,22 +110,16 @@ SourceContext sourceContext(const TargetModel& target, const Eigen::Matrix3Xd& p
   const double coarse_voxel = target.coarse.grid.voxel_size;
   // Four independent passes over the points as one-thread tasks, the longest first.
   runTasks(4, params.num_threads, [&](int part) {
-    switch (part) {
-    case 0:
+    if (part == 0)
       source.patches =
           surfacePatches(points, kPatchVoxels * coarse_voxel, Eigen::Vector3d::Zero());
-      break;
-    case 1:
+    else if (part == 1)
       source.samples.points = verificationSamples(points, target.index.radius());
-      break;
-    case 2:
-      if (params.sensor_centered)
-        source.free_space =
-            freeSpace(points, kFreeSpaceBandwidth, kFreeSpaceMargin * coarse_voxel, 1);
-      break;
-    default:
+    else if (part == 2 && params.sensor_centered)
+      source.free_space =
+          freeSpace(points, kFreeSpaceBandwidth, kFreeSpaceMargin * coarse_voxel, 1);
+    else if (part == 3)
       source.coarse_points = voxelCentroids(points, coarse_voxel / kIndexThinning);
-    }
   });
   source.samples.weights = orientationWeights(source.patches, source.samples.points);
   source.samples.normals = patchNormalsAt(source.patches, source.samples.points);
@@ -157,12 +134,23 @@ double msSince(Clock::time_point start)
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-SphericalSpectrum sourceSpectrum(const Eigen::Matrix3Xd& points,
-                                 const ChannelValues& channels,
-                                 const PhaserParameters& params, StageTimes& times,
-                                 SphericalSupport* support)
+SphericalSpectrum sphericalSpectrum(const Eigen::Matrix3Xd& points,
+                                    const ChannelValues& channels,
+                                    const PhaserParameters& params, const char* which,
+                                    StageTimes& times, SphericalSupport* support)
 {
-  return sphericalSpectrum(points, channels, params, "source", times, support);
+  int observed = 0;
+  SphericalSpectrum F = cloudSphericalSpectrum(
+      points, channels, params.bandwidth, params.fusion_levels, params.num_threads,
+      observed, times.sampling, times.sht, support);
+  if (observed < 2)
+    throw InvalidArgument(
+        std::string(which) +
+        " cloud has fewer than two distinct directions from its "
+        "projection center (empty, all at the center, or a single point)");
+  if (!(spectrumSquaredNorm(F) > 0.0))
+    throw InvalidArgument(std::string(which) + " cloud is constant on the sphere");
+  return F;
 }
 
 SpatialSpectrum occupancySpectrum(const SpatialGrid& grid,
@@ -188,33 +176,24 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
   const SpatialGrid coarse = makeSpatialGrid(points, grid);
   StageParameters single = params;
   single.num_threads = 1;
-  // Five independent parts as one-thread tasks, the longest first: each gives the same
-  // result on any thread count.
+  // Five one-thread tasks, the longest first: the same result on any thread count.
   runTasks(5, params.num_threads, [&](int part) {
-    switch (part) {
-    case 0:
+    if (part == 0) {
       addSurfaceModel(*model, points, coarse.voxel_size);
-      break;
-    case 1:
-      if (params.passes > 1)
-        addFineGrid(*model, points, grid);
-      break;
-    case 2:
+    } else if (part == 1 && params.passes > 1) {
+      addFineGrid(*model, points, grid);
+    } else if (part == 2) {
       model->coarse = occupancySpectrum(coarse, points, 1);
       model->coarse_energy = spectrumEnergy(model->coarse);
-      break;
-    case 3:
-      if (params.sensor_centered)
-        model->free_space = freeSpace(points, kFreeSpaceBandwidth,
-                                      kFreeSpaceMargin * coarse.voxel_size, 1);
-      break;
-    default: {
+    } else if (part == 3 && params.sensor_centered) {
+      model->free_space = freeSpace(points, kFreeSpaceBandwidth,
+                                    kFreeSpaceMargin * coarse.voxel_size, 1);
+    } else if (part == 4) {
       StageTimes unreported;
       model->spherical = sphericalSpectrum(
           points, channels, single, "target", unreported,
           params.normalized_refinement ? &model->spherical_support : nullptr);
       model->spherical_norm = std::sqrt(spectrumSquaredNorm(model->spherical));
-    }
     }
   });
   model->preparation_ms = msSince(start);
@@ -230,7 +209,8 @@ RigidPose estimateCentered(const TargetModel& target, const Eigen::Matrix3Xd& po
   StageTimes& times = diagnostics.times;
   diagnostics.verification_radius = target.index.radius();
   const SourceContext source = sourceContext(target, points, channels, params, times);
-  const SphericalSpectrum H = sourceSpectrum(points, channels, params, times);
+  const SphericalSpectrum H =
+      sphericalSpectrum(points, channels, params, "source", times);
   const auto start = Clock::now();
   const So3CorrelationGrid C = So3Correlator::instance(params.bandwidth)
                                    ->correlate(target.spherical, H, params.num_threads);

@@ -2,52 +2,25 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * The verdict on a pose: how verified poses rank, the limits a right pose meets, and
- * whether the final pose stands out from every distinct hypothesis by more than the
- * choice of samples explains.
+ * The verdict on a pose: its rank, the limits, and whether it stands out from every
+ * distinct hypothesis by more than the choice of samples explains.
  */
 #include "pipeline/pipeline_internal.h"
 
-#include <Eigen/Geometry>
-
-#include <algorithm>
-#include <cmath>
-#include <limits>
-#include <vector>
-
 namespace pcl::phaser {
 namespace detail {
-
-/** A violation is strong evidence against the pose and each sensor's is separate
- *  evidence; a sample without a target neighbor is weak (occlusion, partial overlap),
- *  hence the weight. */
-Verification ranked(const PoseVerification& measured)
-{
-  Verification out;
-  out.inlier_fraction = measured.inlier_fraction;
-  out.score = measured.score;
-  out.free_space_violation = measured.free_space_violation;
-  out.reverse_free_space_violation = measured.reverse_free_space_violation;
-  out.constraint = measured.constraint;
-  out.rank =
-      measured.score - kViolationWeight * (measured.free_space_violation +
-                                           measured.reverse_free_space_violation);
-  return out;
-}
-
-bool meetsLimits(const Verification& verification, const PhaserParameters& params)
-{
-  return verification.inlier_fraction >= params.min_inlier_fraction &&
-         verification.constraint >= params.min_constraint &&
-         std::max(verification.free_space_violation,
-                  verification.reverse_free_space_violation) <=
-             params.max_free_space_violation;
-}
-
 namespace {
 
-/** The highest-ranked of \a hypotheses distinct from \a pose (turned by more than the
- *  hypothesis separation, or moved by more than \a max_shift meters); -1: none. */
+/** Fewest verification samples a source needs for its pose to be verified. */
+constexpr int kMinVerificationSamples = 20;
+/** Weight of a free-space violation (strong evidence) against an inlier (whose lack is
+ *  weak: occlusion, partial overlap) in the rank. */
+constexpr double kViolationWeight = 6.0;
+/** The final pose is distinct from the runner-up when its rank exceeds that one's by
+ *  more than this many standard errors: the one-sided 99 % point of a normal. */
+constexpr double kDistinctErrors = 2.33;
+
+/** The best of \a hypotheses distinct from \a pose (angle, \a max_shift); -1: none. */
 int runnerUp(const std::vector<Hypothesis>& hypotheses, const Pose& pose,
              double max_shift)
 {
@@ -84,10 +57,8 @@ double meanError(const std::vector<double>& d, const Eigen::VectorXd& w)
   return std::sqrt(sum) / total;
 }
 
-/** Standard error of the rank difference of poses \a a and \a b from the samples'
- *  paired differences: the same source samples (closeness less kViolationWeight x
- *  violation) and the same target samples (reverse violations) under both poses. A
- *  difference within a few of it is what the choice of samples alone could give. */
+/** Standard error of the rank difference of \a a and \a b (paired sample differences).
+ */
 double rankDifferenceError(const SourceContext& source, const RigidPose& a,
                            const RigidPose& b)
 {
@@ -123,6 +94,29 @@ double rankDifferenceError(const SourceContext& source, const RigidPose& a,
 
 } // namespace
 
+Verification ranked(const PoseVerification& measured)
+{
+  Verification out;
+  out.inlier_fraction = measured.inlier_fraction;
+  out.score = measured.score;
+  out.free_space_violation = measured.free_space_violation;
+  out.reverse_free_space_violation = measured.reverse_free_space_violation;
+  out.constraint = measured.constraint;
+  out.rank =
+      measured.score - kViolationWeight * (measured.free_space_violation +
+                                           measured.reverse_free_space_violation);
+  return out;
+}
+
+bool meetsLimits(const Verification& verification, const PhaserParameters& params)
+{
+  return verification.inlier_fraction >= params.min_inlier_fraction &&
+         verification.constraint >= params.min_constraint &&
+         std::max(verification.free_space_violation,
+                  verification.reverse_free_space_violation) <=
+             params.max_free_space_violation;
+}
+
 Distinctness standsOut(const SourceContext& source, const Pose& pose,
                        const std::vector<Hypothesis>& hypotheses)
 {
@@ -149,8 +143,6 @@ void judgeFinalPose(const SourceContext& source, const Pose& pose, PhaserResult&
   const Distinctness distinctness = standsOut(source, pose, diagnostics.hypotheses);
   diagnostics.runner_up_rank = distinctness.runner_up_rank;
   diagnostics.runner_up_error = distinctness.error;
-  // The fit's covariance over blocks of kFitBlockVoxels coarse voxels, about the
-  // target's projection center.
   if (!fitCovariance(source.target.index, source.samples, pose,
                      kFitBlockVoxels * source.target.coarse.grid.voxel_size,
                      result.fit_covariance))

@@ -29,11 +29,9 @@ double viewCoverage(const Eigen::Matrix3Xd& points, const Eigen::Vector3d& viewp
   }
   if (seen == 0)
     return 0.0;
-  // Stray returns (a person walking by a depth camera, a few outliers) must not count:
-  // a cell is covered when it holds at least a thousandth of the points.
+  // Stray returns (a person walking by a depth camera) must not count.
   const double needed = std::max(1.0, 1e-3 * static_cast<double>(seen));
-  // Ring j spans colatitudes [j, j+1] pi / 2B: its cells' share of the sphere is
-  // (cos lower - cos upper) / 2 / 2B.
+  // Ring j spans colatitudes [j, j+1] pi / 2B: each cell (cos lower - cos upper) / 4B.
   double covered = 0.0;
   for (int ring = 0; ring < side; ++ring) {
     const double area =

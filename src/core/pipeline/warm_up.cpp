@@ -18,7 +18,6 @@
 #endif
 
 namespace pcl::phaser {
-
 namespace {
 
 constexpr int kRings = 64;
@@ -28,10 +27,8 @@ constexpr double kHighestElevation = 3.0 * M_PI / 180.0;
 struct Box {
   Eigen::Vector3d lo, hi;
 };
-
 /** The walls, floor and ceiling of a 55 x 35 x 8 m hall around the sensors. */
 const Box kHall{{-25.0, -15.0, -1.8}, {30.0, 20.0, 6.2}};
-
 /** Pillars and crates in the hall, placed without symmetry. */
 const Box kObstacles[] = {
     {{4.0, 3.0, -1.8}, {5.0, 4.0, 6.2}},     {{-9.0, 6.0, -1.8}, {-8.0, 7.5, 6.2}},
@@ -68,9 +65,7 @@ double castRay(const Eigen::Vector3d& o, const Eigen::Vector3d& d)
   return t;
 }
 
-/** A 64-ring scan of the hall from the sensor pose \a pose (sensor to hall), in the
- *  sensor frame, about \a points points, with \a channels channels: patterns of the
- *  hall's coordinates. */
+/** A 64-ring scan of the hall from \a pose in the sensor frame, with channels. */
 SourceCloud syntheticScan(const Eigen::Isometry3d& pose, int points,
                           std::size_t channels)
 {
@@ -99,28 +94,6 @@ SourceCloud syntheticScan(const Eigen::Isometry3d& pose, int points,
   return scan;
 }
 
-/** The glibc settings of WarmUpOptions::keep_memory. */
-void keepMemory()
-{
-#if defined(__GLIBC__)
-  mallopt(M_ARENA_MAX, 1);
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
-  mallopt(M_TRIM_THRESHOLD, INT_MAX);
-#endif
-}
-
-/** \a params with the repeated work cut: one rotation and at most one orientation
- *  hypothesis, at most one Newton step. The sizes (bandwidths, grids, passes, channels)
- *  stay, and with them the tables, plans and buffers: after it a first align took
- *  3-976 page faults instead of 29,300. */
-PhaserParameters cheaper(PhaserParameters params)
-{
-  params.rotation_candidates = 1;
-  params.orientation_candidates = std::min(params.orientation_candidates, 1);
-  params.refinement_iterations = std::min(params.refinement_iterations, 1);
-  return params;
-}
-
 } // namespace
 
 std::string warmUp(const PhaserParameters& params, const WarmUpOptions& options)
@@ -129,8 +102,19 @@ std::string warmUp(const PhaserParameters& params, const WarmUpOptions& options)
     return "warm-up: channels must be in [0, 8]";
   if (options.points < 1000 || options.points > 2000000)
     return "warm-up: points must be in [1000, 2000000]";
-  if (options.keep_memory)
-    keepMemory();
+#if defined(__GLIBC__)
+  if (options.keep_memory) {
+    mallopt(M_ARENA_MAX, 1);
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);
+    mallopt(M_TRIM_THRESHOLD, INT_MAX);
+  }
+#endif
+  // The repeated work cut, the sizes (and tables, plans, buffers) kept: after it a
+  // first align took 3-976 page faults instead of 29,300.
+  PhaserParameters cheaper = params;
+  cheaper.rotation_candidates = 1;
+  cheaper.orientation_candidates = std::min(params.orientation_candidates, 1);
+  cheaper.refinement_iterations = std::min(params.refinement_iterations, 1);
   Eigen::Isometry3d source_pose = Eigen::Isometry3d::Identity();
   source_pose.translate(Eigen::Vector3d(0.8, -0.4, 0.0));
   source_pose.rotate(Eigen::AngleAxisd(5.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()));
@@ -139,7 +123,7 @@ std::string warmUp(const PhaserParameters& params, const WarmUpOptions& options)
   const SourceCloud source_scan =
       syntheticScan(source_pose, options.points, options.channels);
   const Target target(std::move(target_scan.points), std::move(target_scan.channels));
-  return align(target, source_scan, Eigen::Matrix4d::Identity(), cheaper(params)).error;
+  return align(target, source_scan, Eigen::Matrix4d::Identity(), cheaper).error;
 }
 
 } // namespace pcl::phaser
