@@ -146,4 +146,38 @@ TEST(EngineAlign, OneTargetServesConcurrentCalls)
             1);
 }
 
+// A target kept in a frame whose origin is 5 km from its data, turned 35 deg (a map in
+// a site frame): about its sensor origin (the default) the pose is the one found in the
+// target's own frame, moved by the site transform.
+TEST(EngineAlign, FarFrameMatchesLocalFrame)
+{
+  const Eigen::Matrix3Xd points = room(6000, 4);
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  T.topLeftCorner<3, 3>() = Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()).matrix();
+  T.topRightCorner<3, 1>() = Eigen::Vector3d(0.8, -0.3, 0.1);
+  const pcl::phaser::SourceCloud source{
+      (T.topLeftCorner<3, 3>().transpose() * points).colwise() -
+          T.topLeftCorner<3, 3>().transpose() * T.topRightCorner<3, 1>(),
+      {}};
+  Eigen::Matrix4d G = Eigen::Matrix4d::Identity();
+  G.topLeftCorner<3, 3>() =
+      Eigen::AngleAxisd(35.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()).matrix();
+  G.topRightCorner<3, 1>() = Eigen::Vector3d(4000.0, -3000.0, 12.0);
+  const Eigen::Matrix3Xd far =
+      (G.topLeftCorner<3, 3>() * points).colwise() + G.topRightCorner<3, 1>();
+  const Eigen::Matrix4d I = Eigen::Matrix4d::Identity();
+  const PhaserResult local =
+      pcl::phaser::align(pcl::phaser::Target(points), source, I, small());
+  const PhaserResult moved =
+      pcl::phaser::align(pcl::phaser::Target(far), source, I, small());
+  ASSERT_TRUE(local.error.empty()) << local.error;
+  ASSERT_TRUE(moved.error.empty()) << moved.error;
+  EXPECT_EQ(moved.projection_center, pcl::phaser::ProjectionCenter::SensorOrigin);
+  EXPECT_LT((local.transformation - T).norm(), 0.3) << local.transformation;
+  const Eigen::Matrix4d back = G.inverse() * moved.transformation;
+  EXPECT_LT((back - T).norm(), 0.3) << back;
+  EXPECT_LT((back - local.transformation).norm(), 0.1) << back - local.transformation;
+  EXPECT_EQ(moved.converged, local.converged);
+}
+
 } // namespace

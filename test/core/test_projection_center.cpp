@@ -11,7 +11,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
+#include <vector>
 
 namespace {
 
@@ -90,4 +92,30 @@ TEST(ProjectionCenter, PolarFractionIsRotationInvariant)
     EXPECT_NEAR(polarFraction(sphere, center), 1.0 - std::sqrt(0.5), 0.03) << k;
     EXPECT_FALSE(looksSensorCentered(sphere, center)) << k;
   }
+}
+
+// A scan's sensor origin lies on its data, also for a narrow sector of it and for a
+// small object about its origin; the origin of the same scan moved 200 m away (a map in
+// a site frame) or of an object 30 m off does not; no finite point: false.
+TEST(ProjectionCenter, OriginOnData)
+{
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3Xd scan = band(20000, 0.4, I, kOrigin, 11);
+  EXPECT_TRUE(pcl::phaser::originOnData(scan, kOrigin));
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index i = 0; i < scan.cols(); ++i)
+    if (std::abs(std::atan2(scan(1, i), scan(0, i))) < 0.1 * M_PI) // a 10 % sector
+      kept.push_back(i);
+  EXPECT_TRUE(pcl::phaser::originOnData(scan(Eigen::all, kept), kOrigin));
+  const Eigen::Vector3d far(160.0, -120.0, 5.0);
+  EXPECT_FALSE(pcl::phaser::originOnData(scan.colwise() + far, kOrigin));
+  EXPECT_TRUE(pcl::phaser::originOnData(scan.colwise() + far, far));
+  const Eigen::Matrix3Xd object = 0.1 * Eigen::Matrix3Xd::Random(3, 500); // 20 cm
+  EXPECT_TRUE(pcl::phaser::originOnData(object, kOrigin));
+  EXPECT_FALSE(
+      pcl::phaser::originOnData(object.colwise() + Eigen::Vector3d(30, 0, 0), kOrigin));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(
+      pcl::phaser::originOnData(Eigen::Matrix3Xd::Constant(3, 4, nan), kOrigin));
+  EXPECT_FALSE(pcl::phaser::originOnData(Eigen::Matrix3Xd(3, 0), kOrigin));
 }

@@ -3,7 +3,7 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  *
  * The engine's entry point in the caller's frames: input checks, the projection
- * center, the target cache, guess composition and the convergence decision.
+ * centers, the target cache, guess composition and the convergence decision.
  */
 #include "pipeline/pipeline_internal.h"
 #include "pipeline/projection_center.h"
@@ -17,6 +17,7 @@ namespace pcl::phaser {
 struct Target::Cache {
   std::mutex mutex;
   int sensor_centered = -1; ///< looksSensorCentered about the origin; < 0: not computed
+  int origin_on_data = -1;  ///< originOnData about the origin; < 0: not computed
   std::shared_ptr<const TargetModel> model;
   ProjectionCenter center = ProjectionCenter::SensorOrigin; ///< of model
   Eigen::Vector3d offset = Eigen::Vector3d::Zero(); ///< the projection center of model
@@ -95,7 +96,18 @@ bool sameModel(const StageParameters& prepared, const StageParameters& wanted)
          prepared.sensor_centered == wanted.sensor_centered;
 }
 
-/** The center both clouds are projected about; \a moved: the source with the guess. */
+/** Whether the target's frame origin lies on its data (its cache locked). */
+bool targetOriginOnData(const Target& target)
+{
+  auto& cache = TargetAccess::cache(target);
+  if (cache.origin_on_data < 0)
+    cache.origin_on_data =
+        originOnData(target.points(), Eigen::Vector3d::Zero()) ? 1 : 0;
+  return cache.origin_on_data == 1;
+}
+
+/** The stage mode; \a moved: the source with the guess. A target whose origin is off
+ *  its data (a map in a site frame) leaves the choice to the source. */
 ProjectionCenter chooseCenter(const Target& target, const Eigen::Matrix3Xd& moved,
                               const Eigen::Matrix4d& guess, ProjectionCenter requested)
 {
@@ -108,14 +120,16 @@ ProjectionCenter chooseCenter(const Target& target, const Eigen::Matrix3Xd& move
     if (cache.sensor_centered < 0)
       cache.sensor_centered =
           looksSensorCentered(target.points(), Eigen::Vector3d::Zero()) ? 1 : 0;
-    target_lidar = cache.sensor_centered == 1;
+    target_lidar = cache.sensor_centered == 1 || !targetOriginOnData(target);
   }
   return target_lidar && looksSensorCentered(moved, guess.topRightCorner<3, 1>())
              ? ProjectionCenter::SensorOrigin
              : ProjectionCenter::Centroid;
 }
 
-/** The target model, cached or prepared (into \a target_ms), and its center. */
+/** The target model, cached or prepared (into \a target_ms), and its center: the
+ *  centroid about centroids or when the frame origin is off the data, else the origin.
+ */
 std::shared_ptr<const TargetModel>
 targetModel(const Target& target, ProjectionCenter center,
             const StageParameters& params, Eigen::Vector3d& offset, double& target_ms)
@@ -126,7 +140,9 @@ targetModel(const Target& target, ProjectionCenter center,
       !sameModel(cache.model->params, params)) {
     cache.model.reset();
     Eigen::Matrix3Xd points = target.points();
-    cache.offset = center == ProjectionCenter::Centroid
+    // About a far origin the target would be a small cap of the sphere, and the true
+    // shift would lie outside its translation grid.
+    cache.offset = center == ProjectionCenter::Centroid || !targetOriginOnData(target)
                        ? Eigen::Vector3d(points.rowwise().mean())
                        : Eigen::Vector3d::Zero();
     points.colwise() -= cache.offset;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 namespace pcl::phaser {
@@ -73,6 +74,24 @@ bool looksSensorCentered(const Eigen::Matrix3Xd& points,
 {
   return viewCoverage(points, viewpoint) >= kSensorFrameCoverage &&
          polarFraction(points, viewpoint) <= kSensorFramePolarFraction;
+}
+
+bool originOnData(const Eigen::Matrix3Xd& points, const Eigen::Vector3d& viewpoint)
+{
+  constexpr Eigen::Index kMaxChecked = 20000;
+  const Eigen::Index step = std::max<Eigen::Index>(1, points.cols() / kMaxChecked);
+  double nearest = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(nearest), hi = -lo;
+  for (Eigen::Index i = 0; i < points.cols(); i += step) {
+    if (!points.col(i).allFinite())
+      continue;
+    nearest = std::min(nearest, (points.col(i) - viewpoint).norm());
+    lo = lo.cwiseMin(points.col(i));
+    hi = hi.cwiseMax(points.col(i));
+  }
+  if (!std::isfinite(nearest))
+    return false;
+  return nearest <= std::max(kOnDataDistance, kOnDataDiagonalShare * (hi - lo).norm());
 }
 
 } // namespace pcl::phaser

@@ -31,4 +31,18 @@ constexpr double kSensorFramePolarFraction = 0.005;
 bool looksSensorCentered(const Eigen::Matrix3Xd& points,
                          const Eigen::Vector3d& viewpoint);
 
+/** \brief Farthest the nearest point may lie from a viewpoint on the data: the larger
+ *  of this and kOnDataDiagonalShare x the bounding-box diagonal. The shared scans'
+ *  nearest returns lie 0.5-2.2 m from their sensors and an aggregated map's 1.6 m
+ *  from its first scan's; the same map moved 75 m off puts it 53 m away. */
+constexpr double kOnDataDistance = 5.0;
+constexpr double kOnDataDiagonalShare = 0.1;
+
+/** \brief True when \a viewpoint lies on the data: the nearest of \a points (a strided
+ *  subset of at most 20,000) is within max(kOnDataDistance m, kOnDataDiagonalShare x
+ *  the bounding-box diagonal) of it. A scan's sensor origin is on its data; the origin
+ *  of a map kept in a site frame hundreds of meters away is not. Non-finite points
+ *  are ignored; false without finite points. */
+bool originOnData(const Eigen::Matrix3Xd& points, const Eigen::Vector3d& viewpoint);
+
 } // namespace pcl::phaser
