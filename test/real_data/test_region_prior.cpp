@@ -6,8 +6,8 @@
  * shared handheld scans: a query whose region holds its true position registers, one
  * whose region excludes it does not converge and stays inside the region.
  */
+#include "prior_map.h"
 #include "real_data_support.h"
-#include "revisits.h"
 
 #include <pcl_phaser/core/pipeline.h>
 
@@ -24,67 +24,30 @@
 namespace pcl::phaser {
 namespace {
 
-const std::string kScans = "lidar/balm_handheld/";
+const std::string kScans = "lidar/balm_handheld";
 
-/** The points and intensities of scan \a index in the world frame (scan 0's). */
-SourceCloud scanCloud(int index, const Eigen::Matrix4d& world_lidar)
+/** Every twelfth scan (15 of the 30, about 1.1 M points, unthinned) in the world frame
+ *  (scan 0's); built once. */
+const bench::PriorMap& priorMap()
 {
-  const auto cloud = test::loadFiniteCloud<pcl::PointXYZI>(
-      kScans + "full" + std::to_string(index) + ".pcd");
-  SourceCloud out;
-  out.points.resize(3, static_cast<Eigen::Index>(cloud->size()));
-  out.channels.assign(1, Eigen::VectorXd(static_cast<Eigen::Index>(cloud->size())));
-  for (std::size_t i = 0; i < cloud->size(); ++i) {
-    const Eigen::Vector4d p((*cloud)[i].x, (*cloud)[i].y, (*cloud)[i].z, 1.0);
-    out.points.col(i) = (world_lidar * p).head<3>();
-    out.channels[0](i) = (*cloud)[i].intensity;
-  }
-  return out;
-}
-
-/** A map of every twelfth scan (15 of the 30, about 1.1 M points, unthinned) in the
- *  world frame, and the poses of all scans. */
-struct PriorMap {
-  std::vector<bench::ScanPose> poses;
-  std::unique_ptr<Target> map;
-};
-
-const PriorMap& priorMap()
-{
-  static const PriorMap built = [] {
-    PriorMap m;
-    std::string error;
-    if (!bench::readScanPoses(test::dataPath(kScans + "poses_T_world_lidar.txt"),
-                              m.poses, error))
-      ADD_FAILURE() << error;
-    Eigen::Matrix3Xd points(3, 0);
-    Eigen::VectorXd intensity(0);
-    for (const bench::ScanPose& pose : m.poses) {
-      if (pose.index % 12 != 0)
-        continue;
-      const SourceCloud scan = scanCloud(pose.index, pose.world_lidar);
-      const Eigen::Index n = points.cols();
-      points.conservativeResize(3, n + scan.points.cols());
-      points.rightCols(scan.points.cols()) = scan.points;
-      intensity.conservativeResize(n + scan.points.cols());
-      intensity.tail(scan.points.cols()) = scan.channels[0];
-    }
-    m.map = std::make_unique<Target>(std::move(points), ChannelValues{intensity});
-    return m;
-  }();
+  static const bench::PriorMap built = bench::buildPriorMap(test::dataPath(kScans), 12);
   return built;
 }
 
 /** Query scan \a index in its sensor frame and its true T_map_query. */
-SourceCloud queryScan(const PriorMap& m, int index, Eigen::Matrix4d& truth)
+SourceCloud queryScan(const bench::PriorMap& m, int index, Eigen::Matrix4d& truth)
 {
-  for (const bench::ScanPose& pose : m.poses)
-    if (pose.index == index) {
-      truth = pose.world_lidar;
-      return scanCloud(index, Eigen::Matrix4d::Identity());
-    }
-  ADD_FAILURE() << "no pose for scan " << index;
-  return {};
+  std::string error;
+  const bench::ScanPose* pose = bench::scanPose(m, index);
+  if (!pose) {
+    ADD_FAILURE() << "no pose for scan " << index;
+    return {};
+  }
+  truth = pose->world_lidar;
+  SourceCloud scan = bench::loadScan(test::dataPath(kScans), index,
+                                     Eigen::Matrix4d::Identity(), error);
+  EXPECT_TRUE(error.empty()) << error;
+  return scan;
 }
 
 PhaserParameters withRegion(const Eigen::Vector3d& center, double radius)
@@ -107,14 +70,18 @@ double rotationErrorDeg(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b)
 
 class RegionPrior : public ::testing::TestWithParam<int> {
 protected:
-  void SetUp() override { PCL_PHASER_REQUIRE_DATA(kScans + "poses_T_world_lidar.txt"); }
+  void SetUp() override
+  {
+    PCL_PHASER_REQUIRE_DATA(kScans + "/poses_T_world_lidar.txt");
+    ASSERT_TRUE(priorMap().error.empty()) << priorMap().error;
+  }
 };
 
 // Queries not in the map (every twelfth scan is); a 10 m region about a point 5 m from
 // the truth holds the true position.
 TEST_P(RegionPrior, QueryInsideItsRegionRegisters)
 {
-  const PriorMap& m = priorMap();
+  const bench::PriorMap& m = priorMap();
   Eigen::Matrix4d truth;
   const SourceCloud query = queryScan(m, GetParam(), truth);
   const Eigen::Vector3d center =
@@ -132,7 +99,7 @@ TEST_P(RegionPrior, QueryInsideItsRegionRegisters)
 // The same queries with the region 40 m off: never converged, never outside it.
 TEST_P(RegionPrior, RegionExcludingTheTruthDoesNotConverge)
 {
-  const PriorMap& m = priorMap();
+  const bench::PriorMap& m = priorMap();
   Eigen::Matrix4d truth;
   const SourceCloud query = queryScan(m, GetParam(), truth);
   const Eigen::Vector3d center =

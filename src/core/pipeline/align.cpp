@@ -133,8 +133,10 @@ targetModel(const Target& target, ProjectionCenter center,
       !sameModel(cache.model->params, params)) {
     cache.model.reset();
     if (region) {
-      const detail::RegionCloud cloud = detail::cropToRegion(
-          target.points(), TargetAccess::channels(target), *region);
+      const detail::RegionCloud cloud = detail::thinForModel(
+          detail::cropToRegion(target.points(), TargetAccess::channels(target),
+                               *region),
+          params.spatial_grid_size, params.voxel_size);
       cache.offset = region->center;
       cache.model = detail::prepareTarget(cloud.points, params, cloud.channels);
     } else {

@@ -7,6 +7,7 @@
  */
 #include "pipeline/region.h"
 #include "support/error.h"
+#include "verification/voxel_hash.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,6 +23,10 @@ constexpr double kRangeStep = 10.0;
 constexpr Eigen::Index kRangeSamples = 20000;
 /** Fewer target points in the region: nothing to register against. */
 constexpr Eigen::Index kMinRegionPoints = 100;
+/** The finest cell the target model uses, in coarse voxels: its indexes keep one
+ *  point per cube of half a coarse voxel / 8 (pipeline.cpp), so a map thinned to it
+ *  loses nothing a stage sees. */
+constexpr double kFinestCell = 1.0 / 16.0;
 
 /** The 99th-percentile distance of \a points from \a sensor, rounded up. */
 double sensorRange(const Eigen::Matrix3Xd& points, const Eigen::Vector3d& sensor)
@@ -73,6 +78,34 @@ RegionCloud cropToRegion(const Eigen::Matrix3Xd& points, const ChannelValues& ch
     cloud.channels.push_back(std::move(kept));
   }
   return cloud;
+}
+
+RegionCloud thinForModel(const RegionCloud& cloud, int grid_size, double voxel_size)
+{
+  SpatialGridParameters grid;
+  grid.grid_size = grid_size;
+  grid.voxel_size = voxel_size;
+  const double cell = kFinestCell * makeSpatialGrid(cloud.points, grid).voxel_size;
+  const VoxelGroups groups = groupByVoxel(cloud.points, cell);
+  RegionCloud out;
+  const auto n = static_cast<Eigen::Index>(groups.size());
+  out.points.resize(3, n);
+  out.channels.assign(cloud.channels.size(), Eigen::VectorXd(n));
+  for (Eigen::Index g = 0; g < n; ++g) {
+    const Eigen::Index begin = groups.offsets[g], end = groups.offsets[g + 1];
+    const double count = static_cast<double>(end - begin);
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (Eigen::Index k = begin; k < end; ++k)
+      sum += cloud.points.col(groups.order[k]);
+    out.points.col(g) = sum / count;
+    for (std::size_t c = 0; c < cloud.channels.size(); ++c) {
+      double value = 0.0;
+      for (Eigen::Index k = begin; k < end; ++k)
+        value += cloud.channels[c](groups.order[k]);
+      out.channels[c](g) = value / count;
+    }
+  }
+  return out;
 }
 
 void keepShiftsWithin(SpatialVolume& correlation, const Eigen::Vector3d& center,

@@ -49,6 +49,11 @@ struct RegionCloud {
 RegionCloud cropToRegion(const Eigen::Matrix3Xd& points, const ChannelValues& channels,
                          const Region& region);
 
+/** \brief \a cloud reduced to the centroid (points and channel values) of each cube of
+ *  the finest cell the target model uses on the grid \a grid_size / \a voxel_size
+ *  (PhaserParameters) sizes for it: a dense map prepares as fast as a scan. */
+RegionCloud thinForModel(const RegionCloud& cloud, int grid_size, double voxel_size);
+
 /** \brief Lowers every lag of \a correlation whose shift is farther than \a radius
  *  from \a center (meters, the shift's space) to the volume's minimum, so no peak is
  *  found there. */
