@@ -72,6 +72,10 @@ void printHelp(int, char** argv)
       "    --center MODE       = projection center: sensor (each cloud's origin, for "
       "LiDAR scans), centroid, or auto (sensor when both clouds surround their "
       "origin) (default: sensor)\n"
+      "    --region X,Y,Z,R    = position prior: the source's sensor is within R m of "
+      "(X, Y, Z) in the target's frame;\n"
+      "                          only target points a sensor there could see are used "
+      "and no pose outside is returned\n"
       "    --threads T         = worker threads, %s, 0: one per hardware thread "
       "(default: 0, here %u; the demo: %d)\n"
       "    --print-parameters  = print the range of every setting as a Markdown "
@@ -179,6 +183,10 @@ int compute(const pcl::PCLPointCloud2& source_blob,
   params.projection_center = opt.center == "centroid" ? Center::Centroid
                              : opt.center == "auto"   ? Center::Automatic
                                                       : Center::SensorOrigin;
+  params.region_x = opt.region[0];
+  params.region_y = opt.region[1];
+  params.region_z = opt.region[2];
+  params.region_radius = opt.region[3];
   phaser.setParameters(params);
   phaser.setInputSource(source);
   phaser.setInputTarget(target);

@@ -67,6 +67,7 @@ struct Options {
   int bandwidth = 0, grid = 0, passes = 0; // 0: the class default
   int threads = -1;                        // -1: the class default (the demo: 2)
   double icp_distance = default_icp_distance;
+  double region[4] = {0, 0, 0, 0}; // x y z radius; radius 0: no position prior
   int width = default_width, height = default_height, seed = default_seed;
 };
 
@@ -91,24 +92,17 @@ struct Spec {
   const char *name, *alias;
   bool has_value;
 };
-const Spec specs[] = {{"-b", "--bandwidth", true},
-                      {"--grid", nullptr, true},
-                      {"--passes", nullptr, true},
-                      {"--center", "--center", true},
-                      {"--threads", nullptr, true},
-                      {"-icp", "--icp", false},
-                      {"--icp-point", nullptr, false},
-                      {"--icp-dist", nullptr, true},
-                      {"-o", nullptr, true},
-                      {"-m", nullptr, true},
-                      {"--screenshot", nullptr, true},
-                      {"--size", nullptr, true},
-                      {"--gt", nullptr, true},
-                      {"--json", nullptr, false},
-                      {"--demo", nullptr, false},
-                      {"--seed", nullptr, true},
-                      {"--print-parameters", nullptr, false},
-                      {"-h", "--help", false}};
+const Spec specs[] = {
+    {"-b", "--bandwidth", true},   {"--grid", nullptr, true},
+    {"--passes", nullptr, true},   {"--center", "--center", true},
+    {"--threads", nullptr, true},  {"--region", nullptr, true},
+    {"-icp", "--icp", false},      {"--icp-point", nullptr, false},
+    {"--icp-dist", nullptr, true}, {"-o", nullptr, true},
+    {"-m", nullptr, true},         {"--screenshot", nullptr, true},
+    {"--size", nullptr, true},     {"--gt", nullptr, true},
+    {"--json", nullptr, false},    {"--demo", nullptr, false},
+    {"--seed", nullptr, true},     {"--print-parameters", nullptr, false},
+    {"-h", "--help", false}};
 
 inline const Spec* findSpec(const char* arg)
 {
@@ -229,11 +223,39 @@ inline std::string parameterTable()
   return (out);
 }
 
-/** \brief Parse the other valued registration options: --center, --icp-dist, --size.
- * \return kOk or kUsage (after fail()) */
+/** \brief Parse --region X,Y,Z,R into \a opt.region: finite, R > 0, each in the range
+ *  of its PhaserParameters field. \return kOk or kUsage (after fail()) */
+inline int parseRegion(const std::string& text, Options& opt)
+{
+  static const char* const fields[4] = {"region_x", "region_y", "region_z",
+                                        "region_radius"};
+  const char* p = text.c_str();
+  for (int k = 0; k < 4; ++k) {
+    char* end = nullptr;
+    opt.region[k] = std::strtod(p, &end);
+    const pcl::phaser::ParameterRange* range =
+        pcl::phaser::findParameterRange(fields[k]);
+    const bool last = k == 3;
+    if (end == p || *end != (last ? '\0' : ',') || !std::isfinite(opt.region[k]) ||
+        opt.region[k] < range->min || opt.region[k] > range->max ||
+        (last && !(opt.region[k] > 0.0)))
+      return (fail(kUsage,
+                   "Invalid --region '%s': expected X,Y,Z,R in meters in the target's "
+                   "frame, coordinates within 1e6 m and 0 < R <= %g.",
+                   text.c_str(), pcl::phaser::findParameterRange(fields[3])->max));
+    p = end + 1;
+  }
+  return (kOk);
+}
+
+/** \brief Parse the other valued registration options: --center, --region, --icp-dist,
+ *  --size. \return kOk or kUsage (after fail()) */
 inline int parseValueOptions(int argc, char** argv, Options& opt)
 {
   std::string text;
+  if (optionValue(argc, argv, *findSpec("--region"), text) &&
+      parseRegion(text, opt) != kOk)
+    return (kUsage);
   if (optionValue(argc, argv, *findSpec("--center"), text)) {
     if (text != "sensor" && text != "centroid" && text != "auto")
       return (fail(kUsage, "Invalid --center '%s': expected sensor, centroid or auto.",

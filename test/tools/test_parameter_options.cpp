@@ -97,3 +97,17 @@ TEST(ParameterOptions, ThreadsZeroIsAutomatic)
       "threads " + std::to_string(pcl::phaser::resolveThreadCount(0)) + ", center";
   EXPECT_TRUE(has(out.text, automatic)) << out.text;
 }
+
+TEST(ParameterOptions, RegionIsFourNumbersWithAPositiveRadius)
+{
+  for (const char* value : {"1,2,3", "1,2,3,0", "1,2,3,-5", "a,b,c,d", "1,2,3,4,5",
+                            "2e6,0,0,5", "1,2,3,nan", "1;2;3;4"}) {
+    const Output bad = run(std::string("--demo --region '") + value + "'", true);
+    EXPECT_EQ(bad.code, 1) << value;
+    EXPECT_TRUE(has(bad.text, "Invalid --region")) << bad.text;
+  }
+  EXPECT_TRUE(has(run("-h", true).text, "--region X,Y,Z,R"));
+  // The demo's source sensor is 2.8 m from the target's: inside a 10 m region about it.
+  const Output good = run("--demo --region 0,0,0,10 -m /dev/null.pcd", true);
+  EXPECT_EQ(good.code, 0) << good.text;
+}

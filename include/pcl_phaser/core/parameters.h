@@ -50,6 +50,17 @@ struct PhaserParameters {
   double min_constraint = 0.04;           ///< of diagnostics.verification.constraint
   double min_peak_score = 20.0;           ///< of diagnostics.translation_score ...
   double min_normalized_overlap = 0.55;   ///< ... or half that score and this overlap
+  /** \brief Position prior (a GNSS fix, the last known pose): the source's sensor, its
+   *  frame origin after the guess, lies within region_radius of (region_x, region_y,
+   *  region_z) in the target's frame; 0: no prior. Only target points a sensor there
+   *  could see are used, the translation search covers the region, and a pose outside
+   *  it is never returned. The source is projected about its sensor, the target about
+   *  the region's center, whatever projection_center says. */
+  double region_radius = 0.0;
+  double region_x = 0.0, region_y = 0.0, region_z = 0.0; ///< meters, target frame
+  /** \brief With a region: target points farther than region_radius + this from its
+   *  center are left out; 0: the source's 99th-percentile range, rounded up to 10 m. */
+  double sensor_range = 0.0;
 };
 
 /** \brief One row of kParameterRanges: a numeric field of PhaserParameters. */
@@ -98,7 +109,17 @@ inline constexpr ParameterRange kParameterRanges[] = {
     {"min_peak_score", nullptr, &PhaserParameters::min_peak_score, 0, HUGE_VAL, "",
      "about centroids: least translation peak-to-sidelobe ratio"},
     {"min_normalized_overlap", nullptr, &PhaserParameters::min_normalized_overlap, 0, 1,
-     "", "about centroids: least overlap that lets half that score do"}};
+     "", "about centroids: least overlap that lets half that score do"},
+    {"region_radius", nullptr, &PhaserParameters::region_radius, 0, 1e5, "m",
+     "position prior: the source's sensor is this close to the region center (0: off)"},
+    {"region_x", nullptr, &PhaserParameters::region_x, -1e6, 1e6, "m",
+     "position prior: region center, target frame"},
+    {"region_y", nullptr, &PhaserParameters::region_y, -1e6, 1e6, "m",
+     "position prior: region center, target frame"},
+    {"region_z", nullptr, &PhaserParameters::region_z, -1e6, 1e6, "m",
+     "position prior: region center, target frame"},
+    {"sensor_range", nullptr, &PhaserParameters::sensor_range, 0, 1e4, "m",
+     "position prior: target points within region_radius + this are used (0: auto)"}};
 
 /** \brief The row of field \a name in kParameterRanges; null when there is none. */
 const ParameterRange* findParameterRange(const std::string& name);

@@ -7,6 +7,7 @@
  */
 #include "pipeline/pipeline_internal.h"
 #include "pipeline/projection_center.h"
+#include "pipeline/region.h"
 
 #include <mutex>
 #include <new>
@@ -21,6 +22,8 @@ struct Target::Cache {
   std::shared_ptr<const TargetModel> model;
   ProjectionCenter center = ProjectionCenter::SensorOrigin; ///< of model
   Eigen::Vector3d offset = Eigen::Vector3d::Zero(); ///< the projection center of model
+  bool has_region = false; ///< model is of the points in region only
+  detail::Region region;
 };
 
 Target::Target(Eigen::Matrix3Xd points, ChannelValues channels)
@@ -127,27 +130,44 @@ ProjectionCenter chooseCenter(const Target& target, const Eigen::Matrix3Xd& move
              : ProjectionCenter::Centroid;
 }
 
-/** The target model, cached or prepared (into \a target_ms), and its center: the
- *  centroid about centroids or when the frame origin is off the data, else the origin.
- */
+/** The target model, cached or prepared (into \a target_ms), and its center: with a
+ *  \a region, of the points a sensor there could see, about the region's center; else
+ *  the centroid about centroids or when the frame origin is off the data, else the
+ *  origin. */
 std::shared_ptr<const TargetModel>
 targetModel(const Target& target, ProjectionCenter center,
-            const StageParameters& params, Eigen::Vector3d& offset, double& target_ms)
+            const StageParameters& params, const detail::Region* region,
+            Eigen::Vector3d& offset, double& target_ms)
 {
   auto& cache = TargetAccess::cache(target);
   std::lock_guard<std::mutex> lock(cache.mutex);
-  if (!cache.model || cache.center != center ||
+  const bool same_region =
+      region ? cache.has_region && cache.region == *region : !cache.has_region;
+  if (!cache.model || cache.center != center || !same_region ||
       !sameModel(cache.model->params, params)) {
     cache.model.reset();
-    Eigen::Matrix3Xd points = target.points();
-    // About a far origin the target would be a small cap of the sphere, and the true
-    // shift would lie outside its translation grid.
-    cache.offset = center == ProjectionCenter::Centroid || !targetOriginOnData(target)
-                       ? Eigen::Vector3d(points.rowwise().mean())
-                       : Eigen::Vector3d::Zero();
-    points.colwise() -= cache.offset;
-    cache.model = detail::prepareTarget(points, params, TargetAccess::channels(target));
+    if (region) {
+      const detail::RegionCloud cloud = detail::thinForModel(
+          detail::cropToRegion(target.points(), TargetAccess::channels(target),
+                               *region),
+          params.spatial_grid_size, params.voxel_size);
+      cache.offset = region->center;
+      cache.model = detail::prepareTarget(cloud.points, params, cloud.channels);
+    } else {
+      Eigen::Matrix3Xd points = target.points();
+      // About a far origin the target would be a small cap of the sphere, and the true
+      // shift would lie outside its translation grid.
+      cache.offset = center == ProjectionCenter::Centroid || !targetOriginOnData(target)
+                         ? Eigen::Vector3d(points.rowwise().mean())
+                         : Eigen::Vector3d::Zero();
+      points.colwise() -= cache.offset;
+      cache.model =
+          detail::prepareTarget(points, params, TargetAccess::channels(target));
+    }
     cache.center = center;
+    cache.has_region = region != nullptr;
+    if (region)
+      cache.region = *region;
     target_ms = cache.model->preparation_ms;
   }
   offset = cache.offset;
@@ -193,8 +213,13 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
   for (Eigen::Index i = 0; i < moved.cols(); ++i)
     moved.col(i) = guess.topLeftCorner<3, 3>() * source.points.col(i) +
                    guess.topRightCorner<3, 1>();
+  const bool region_on = detail::hasRegion(params);
+  const detail::Region region =
+      region_on ? detail::regionOf(params, moved, guess.topRightCorner<3, 1>())
+                : detail::Region();
   const ProjectionCenter center =
-      chooseCenter(target, moved, guess, params.projection_center);
+      region_on ? ProjectionCenter::SensorOrigin
+                : chooseCenter(target, moved, guess, params.projection_center);
   StageParameters stage_params{params, center == ProjectionCenter::SensorOrigin};
   stage_params.num_threads = resolveThreadCount(params.num_threads);
   // The tilt pull it corrects comes from a scanner's band, seen about its origin only.
@@ -202,8 +227,9 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
       params.normalized_refinement && stage_params.sensor_centered;
   PhaserResult result;
   Eigen::Vector3d target_center;
-  const std::shared_ptr<const TargetModel> model = targetModel(
-      target, center, stage_params, target_center, result.diagnostics.times.target);
+  const std::shared_ptr<const TargetModel> model =
+      targetModel(target, center, stage_params, region_on ? &region : nullptr,
+                  target_center, result.diagnostics.times.target);
   const Eigen::Vector3d source_center =
       center == ProjectionCenter::Centroid
           ? Eigen::Vector3d(moved.rowwise().mean())
@@ -227,6 +253,8 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
     h.transformation =
         callerFrame(h.rotation, h.translation, source_center, target_center, guess);
   result.converged = converged(result, params);
+  if (region_on)
+    detail::confineToRegion(result, region);
   return result;
 }
 

@@ -6,6 +6,7 @@
  * verification and local refinement, and the choice among them.
  */
 #include "pipeline/pipeline_internal.h"
+#include "pipeline/region.h"
 
 namespace pcl::phaser {
 namespace detail {
@@ -140,7 +141,7 @@ void translateHypotheses(const SourceContext& source,
              Hypothesis& h = hypotheses[first + k];
              const SpatialCorrelationResult shift = correlateTranslation(
                  source.target.coarse, h.rotation * source.coarse_points,
-                 source.params.whitening, 1, task);
+                 source.params.whitening, 1, task, nullptr, nullptr, maxShift(source));
              h.overlap = shift.peak_value;
              const Pose pose = verifiedPose(source, {h.rotation, shift.shift}, task);
              record(h, refined ? refineOnSamples(source, pose, task, 1) : pose);
@@ -159,10 +160,12 @@ void addTranslationPeaks(const SourceContext& source,
     const auto begin = Clock::now();
     const Eigen::Matrix3d& R = rotations[k];
     // The pass-1 correlation again: cheaper than keeping every volume (16 MB each).
-    const SpatialVolume C = correlateSpectraWhitened(
+    SpatialVolume C = correlateSpectraWhitened(
         target.coarse,
         occupancySpectrum(target.coarse.grid, R * source.coarse_points, 1),
         source.params.whitening, 1);
+    if (hasRegion(source.params))
+      keepShiftsWithin(C, Eigen::Vector3d::Zero(), maxShift(source));
     std::vector<SpatialCorrelationResult> peaks =
         findDistinctSpatialPeaks(C, 1 + kExtraTranslationPeaks, kPeakSeparation);
     task.translation += msSince(begin);

@@ -123,11 +123,16 @@ SpatialSpectrum occupancySpectrum(const SpatialGrid& grid,
 Verification verifyBothWays(const SourceContext& source, const Eigen::Matrix3d& R,
                             const Eigen::Vector3d& t, StageTimes& times, int threads);
 /** Translation of \a points onto \a target at the whitened correlation's sub-voxel
- *  peak; with \a volume the plain correlation kept and the sidelobe score computed. */
+ *  peak, no longer than \a max_shift; with \a volume the plain correlation kept and
+ *  the sidelobe score computed. */
 SpatialCorrelationResult
 correlateTranslation(const SpatialSpectrum& target, const Eigen::Matrix3Xd& points,
                      double whitening, int num_threads, StageTimes& times,
-                     SpatialVolume* volume = nullptr, double* source_energy = nullptr);
+                     SpatialVolume* volume = nullptr, double* source_energy = nullptr,
+                     double max_shift = std::numeric_limits<double>::infinity());
+/** The longest pass-1 shift: the region's radius and a coarse voxel (the sensor sits
+ *  at the centered origin), else unbounded. */
+double maxShift(const SourceContext& source);
 /** \a pose refined on the verification samples (refinePoseWithin: within the
  *  hypothesis separation and two coarse voxels), kept when it ranks higher. */
 Pose refineOnSamples(const SourceContext& source, const Pose& pose, StageTimes& times,

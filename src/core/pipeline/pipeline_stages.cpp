@@ -5,6 +5,7 @@
  * Later passes, final refinement and the steps they share with the global search.
  */
 #include "pipeline/pipeline_internal.h"
+#include "pipeline/region.h"
 
 namespace pcl::phaser {
 namespace detail {
@@ -174,7 +175,7 @@ SpatialCorrelationResult correlateTranslation(const SpatialSpectrum& target,
                                               const Eigen::Matrix3Xd& points,
                                               double whitening, int num_threads,
                                               StageTimes& times, SpatialVolume* volume,
-                                              double* source_energy)
+                                              double* source_energy, double max_shift)
 {
   const auto start = Clock::now();
   SpatialSpectrum S = occupancySpectrum(target.grid, points, num_threads);
@@ -185,12 +186,21 @@ SpatialCorrelationResult correlateTranslation(const SpatialSpectrum& target,
     plain = correlateSpectra(target, S, num_threads);
   SpatialVolume C =
       correlateSpectraWhitened(target, std::move(S), whitening, num_threads);
+  if (std::isfinite(max_shift))
+    keepShiftsWithin(C, Eigen::Vector3d::Zero(), max_shift);
   const SpatialCorrelationResult shift = findSpatialPeak(
       C, SpatialPeakRefinement::kGaussian, num_threads, volume != nullptr);
   if (volume)
     *volume = whitening > 0.0 ? std::move(plain) : std::move(C);
   times.translation += msSince(start);
   return shift;
+}
+
+double maxShift(const SourceContext& source)
+{
+  const StageParameters& params = source.params;
+  return hasRegion(params) ? params.region_radius + source.target.coarse.grid.voxel_size
+                           : std::numeric_limits<double>::infinity();
 }
 
 Pose refineOnSamples(const SourceContext& source, const Pose& pose, StageTimes& times,

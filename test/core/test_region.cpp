@@ -1,0 +1,92 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ *
+ * The position prior's pieces: the crop of the target, the bound on the translation
+ * search and the guard on the answer.
+ */
+#include "pipeline/region.h"
+#include "support/error.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace pcl::phaser::detail {
+namespace {
+
+TEST(Region, CropKeepsThePointsInReachRelativeToTheCenter)
+{
+  Eigen::Matrix3Xd points(3, 300);
+  Eigen::VectorXd intensity(300);
+  for (int i = 0; i < 300; ++i) {
+    points.col(i) = Eigen::Vector3d(i, 0.0, 1.0); // x = 0 .. 299 m
+    intensity(i) = i;
+  }
+  Region region;
+  region.center = Eigen::Vector3d(100.0, 0.0, 1.0);
+  region.radius = 10.0;
+  region.reach = 60.0;
+  const RegionCloud cloud = cropToRegion(points, {intensity}, region);
+  ASSERT_EQ(cloud.points.cols(), 121); // x = 40 .. 160
+  EXPECT_EQ(cloud.points.col(0), Eigen::Vector3d(-60.0, 0.0, 0.0));
+  ASSERT_EQ(cloud.channels.size(), 1u);
+  EXPECT_EQ(cloud.channels[0](0), 40.0);
+  EXPECT_EQ(cloud.channels[0](120), 160.0);
+  region.center.x() = 1000.0; // no point within reach
+  EXPECT_THROW(cropToRegion(points, {intensity}, region), InvalidArgument);
+}
+
+TEST(Region, ShiftsBeyondTheRadiusCannotPeak)
+{
+  SpatialVolume volume;
+  volume.grid.dims = Eigen::Vector3i(16, 16, 16);
+  volume.grid.voxel_size = 1.0;
+  volume.values.assign(volume.grid.size(), 0.0);
+  volume.values[volume.grid.flatIndex(8, 0, 0)] = 5.0;   // lag -8 m on x: outside
+  volume.values[volume.grid.flatIndex(15, 2, 1)] = 3.0;  // lag (-1, 2, 1): inside
+  volume.values[volume.grid.flatIndex(1, 1, 15)] = -2.0; // the lowest value
+  keepShiftsWithin(volume, Eigen::Vector3d::Zero(), 4.0);
+  EXPECT_EQ(volume.values[volume.grid.flatIndex(8, 0, 0)], -2.0);
+  EXPECT_EQ(volume.values[volume.grid.flatIndex(15, 2, 1)], 3.0);
+  const SpatialCorrelationResult peak =
+      findSpatialPeak(volume, SpatialPeakRefinement::kNone, 1, false);
+  EXPECT_EQ(peak.index, Eigen::Vector3i(15, 2, 1));
+}
+
+TEST(Region, AnAnswerOutsideFallsBackInsideAndDoesNotConverge)
+{
+  Region region;
+  region.center = Eigen::Vector3d(10.0, 0.0, 0.0);
+  region.radius = 5.0;
+  PhaserResult result;
+  result.converged = true;
+  result.transformation.topRightCorner<3, 1>() = Eigen::Vector3d(30.0, 0.0, 0.0);
+  Hypothesis outside, inside, better_outside;
+  outside.transformation.topRightCorner<3, 1>() = Eigen::Vector3d(30.0, 0.0, 0.0);
+  outside.verification.rank = 0.5;
+  inside.transformation.topRightCorner<3, 1>() = Eigen::Vector3d(12.0, 1.0, 0.0);
+  inside.verification.rank = 0.1;
+  better_outside.transformation.topRightCorner<3, 1>() = Eigen::Vector3d(0.0, 0.0, 0.0);
+  better_outside.verification.rank = 0.9;
+  result.diagnostics.hypotheses = {outside, inside, better_outside};
+  confineToRegion(result, region);
+  EXPECT_FALSE(result.converged);
+  EXPECT_EQ(result.chosen_hypothesis, 1);
+  EXPECT_EQ(result.transformation, inside.transformation);
+
+  result.diagnostics.hypotheses.clear(); // none inside: the nearest point of the region
+  result.converged = true;
+  result.transformation.topRightCorner<3, 1>() = Eigen::Vector3d(10.0, -20.0, 0.0);
+  confineToRegion(result, region);
+  EXPECT_FALSE(result.converged);
+  const Eigen::Vector3d moved = result.transformation.topRightCorner<3, 1>();
+  EXPECT_TRUE(moved.isApprox(Eigen::Vector3d(10.0, -5.0, 0.0)));
+
+  result.converged = true; // inside: untouched
+  confineToRegion(result, region);
+  EXPECT_TRUE(result.converged);
+}
+
+} // namespace
+} // namespace pcl::phaser::detail
