@@ -147,15 +147,15 @@ void runQuery(const bench::PriorMap& m, const Target& map, const std::string& di
   PhaserParameters whole;
   whole.num_threads = threads;
   timedAlign(map, query, whole); // prepares the whole map
-  const Timed map = medianOf(runs, map, query, whole, same);
+  const Timed whole_map = medianOf(runs, map, query, whole, same);
   std::printf("| %d | %d | %.1f / %.1f | %s | %.1f / %.2f | %s | %.1f / %.1f | %.2f / "
               "%.2f | %.1f / %.2f | %s |\n",
               index, nearest, pair.ms, pair.ms / unit,
               verdict(pair.result, world_nearest.inverse() * truth).c_str(), fresh.ms,
               fresh.ms / pair.ms, verdict(cached.result, truth).c_str(), cached.ms,
               cached.ms / unit, fresh.result.diagnostics.times.target / unit,
-              cached.ms / pair.ms, map.ms, map.ms / pair.ms,
-              verdict(map.result, truth).c_str());
+              cached.ms / pair.ms, whole_map.ms, whole_map.ms / pair.ms,
+              verdict(whole_map.result, truth).c_str());
 }
 
 } // namespace
