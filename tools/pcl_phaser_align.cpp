@@ -72,6 +72,11 @@ void printHelp(int, char** argv)
       "    --center MODE       = projection center: sensor (each cloud's origin, for "
       "LiDAR scans), centroid, or auto (sensor when both clouds surround their "
       "origin) (default: sensor)\n"
+      "    --max-tilt DEG      = gravity prior: both clouds z-up (after the guess) up "
+      "to "
+      "DEG; only rotations tilting\n"
+      "                          the source less are searched, a result beyond is not "
+      "converged; %s, 0: off (default: 0)\n"
       "    --threads T         = worker threads, %s, 0: one per hardware thread "
       "(default: 0, here %u; the demo: %d)\n"
       "    --print-parameters  = print the range of every setting as a Markdown "
@@ -79,7 +84,7 @@ void printHelp(int, char** argv)
       rangeOf("bandwidth").c_str(), d.getBandwidth(),
       rangeOf("spatial_grid_size").c_str(), d.getParameters().spatial_grid_size,
       rangeOf("passes").c_str(), d.getParameters().passes,
-      rangeOf("num_threads").c_str(),
+      rangeOf("max_tilt_deg").c_str(), rangeOf("num_threads").c_str(),
       static_cast<unsigned>(pcl::phaser::resolveThreadCount(0)), default_demo_threads);
   print_info(
       "    -icp                = refine with point-to-plane ICP "
@@ -179,6 +184,7 @@ int compute(const pcl::PCLPointCloud2& source_blob,
   params.projection_center = opt.center == "centroid" ? Center::Centroid
                              : opt.center == "auto"   ? Center::Automatic
                                                       : Center::SensorOrigin;
+  params.max_tilt_deg = opt.max_tilt;
   phaser.setParameters(params);
   phaser.setInputSource(source);
   phaser.setInputTarget(target);
@@ -191,6 +197,8 @@ int compute(const pcl::PCLPointCloud2& source_blob,
              static_cast<unsigned>(
                  pcl::phaser::resolveThreadCount(int(phaser.getNumberOfThreads()))),
              opt.center.c_str());
+  if (params.max_tilt_deg > 0.0)
+    print_info("with a max tilt %g deg ", params.max_tilt_deg);
   TicToc tt;
   tt.tic();
   Cloud aligned;

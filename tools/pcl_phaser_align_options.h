@@ -67,6 +67,7 @@ struct Options {
   int bandwidth = 0, grid = 0, passes = 0; // 0: the class default
   int threads = -1;                        // -1: the class default (the demo: 2)
   double icp_distance = default_icp_distance;
+  double max_tilt = 0.0; // degrees, 0: no gravity prior
   int width = default_width, height = default_height, seed = default_seed;
 };
 
@@ -91,24 +92,17 @@ struct Spec {
   const char *name, *alias;
   bool has_value;
 };
-const Spec specs[] = {{"-b", "--bandwidth", true},
-                      {"--grid", nullptr, true},
-                      {"--passes", nullptr, true},
-                      {"--center", "--center", true},
-                      {"--threads", nullptr, true},
-                      {"-icp", "--icp", false},
-                      {"--icp-point", nullptr, false},
-                      {"--icp-dist", nullptr, true},
-                      {"-o", nullptr, true},
-                      {"-m", nullptr, true},
-                      {"--screenshot", nullptr, true},
-                      {"--size", nullptr, true},
-                      {"--gt", nullptr, true},
-                      {"--json", nullptr, false},
-                      {"--demo", nullptr, false},
-                      {"--seed", nullptr, true},
-                      {"--print-parameters", nullptr, false},
-                      {"-h", "--help", false}};
+const Spec specs[] = {
+    {"-b", "--bandwidth", true},   {"--grid", nullptr, true},
+    {"--passes", nullptr, true},   {"--center", "--center", true},
+    {"--max-tilt", nullptr, true}, {"--threads", nullptr, true},
+    {"-icp", "--icp", false},      {"--icp-point", nullptr, false},
+    {"--icp-dist", nullptr, true}, {"-o", nullptr, true},
+    {"-m", nullptr, true},         {"--screenshot", nullptr, true},
+    {"--size", nullptr, true},     {"--gt", nullptr, true},
+    {"--json", nullptr, false},    {"--demo", nullptr, false},
+    {"--seed", nullptr, true},     {"--print-parameters", nullptr, false},
+    {"-h", "--help", false}};
 
 inline const Spec* findSpec(const char* arg)
 {
@@ -229,11 +223,33 @@ inline std::string parameterTable()
   return (out);
 }
 
-/** \brief Parse the other valued registration options: --center, --icp-dist, --size.
+/** \brief Parse --max-tilt DEG into \a opt, checked against the range of
+ * PhaserParameters::max_tilt_deg.
+ * \return kOk or kUsage (after fail()) */
+inline int parseMaxTilt(int argc, char** argv, Options& opt)
+{
+  std::string text;
+  if (!optionValue(argc, argv, *findSpec("--max-tilt"), text))
+    return (kOk);
+  const pcl::phaser::ParameterRange* r =
+      pcl::phaser::findParameterRange("max_tilt_deg");
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !(v >= r->min && v <= r->max))
+    return (fail(kUsage, "Invalid --max-tilt '%s': expected degrees in %g..%g (%s).",
+                 text.c_str(), r->min, r->max, r->meaning));
+  opt.max_tilt = v;
+  return (kOk);
+}
+
+/** \brief Parse the other valued registration options: --center, --max-tilt,
+ * --icp-dist, --size.
  * \return kOk or kUsage (after fail()) */
 inline int parseValueOptions(int argc, char** argv, Options& opt)
 {
   std::string text;
+  if (parseMaxTilt(argc, argv, opt) != kOk)
+    return (kUsage);
   if (optionValue(argc, argv, *findSpec("--center"), text)) {
     if (text != "sensor" && text != "centroid" && text != "auto")
       return (fail(kUsage, "Invalid --center '%s': expected sensor, centroid or auto.",

@@ -50,6 +50,11 @@ struct PhaserParameters {
   double min_constraint = 0.04;           ///< of diagnostics.verification.constraint
   double min_peak_score = 20.0;           ///< of diagnostics.translation_score ...
   double min_normalized_overlap = 0.55;   ///< ... or half that score and this overlap
+  /** \brief Gravity prior, degrees (0: off). Both clouds are z-up after the guess (or
+   *  the guess makes them so) up to this tilt: only rotations tilting the source by
+   *  less are searched, and a result tilted more is replaced by the best hypothesis
+   *  within it and not converged. Wrong for a rig held at an angle. */
+  double max_tilt_deg = 0.0;
 };
 
 /** \brief One row of kParameterRanges: a numeric field of PhaserParameters. */
@@ -98,7 +103,9 @@ inline constexpr ParameterRange kParameterRanges[] = {
     {"min_peak_score", nullptr, &PhaserParameters::min_peak_score, 0, HUGE_VAL, "",
      "about centroids: least translation peak-to-sidelobe ratio"},
     {"min_normalized_overlap", nullptr, &PhaserParameters::min_normalized_overlap, 0, 1,
-     "", "about centroids: least overlap that lets half that score do"}};
+     "", "about centroids: least overlap that lets half that score do"},
+    {"max_tilt_deg", nullptr, &PhaserParameters::max_tilt_deg, 0, 180, "deg",
+     "gravity prior: largest tilt of the rotation searched (0: off)"}};
 
 /** \brief The row of field \a name in kParameterRanges; null when there is none. */
 const ParameterRange* findParameterRange(const std::string& name);
