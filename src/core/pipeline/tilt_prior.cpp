@@ -8,9 +8,9 @@ namespace pcl::phaser {
 namespace detail {
 namespace {
 
-/** Share of the orientation-histogram hypotheses tried within the prior (2 of 10):
- *  within a 10 deg cone, KITTI and HDL-32 under 20 poses tilted up to 8 deg were all
- *  found with 1 or 2, and 2 brings an align to about 0.6x the full search's time. */
+/** Least share of the orientation-histogram hypotheses tried within the prior (2 of
+ * 10): within a 10 deg cone, KITTI and HDL-32 under 20 poses tilted up to 8 deg were
+ * all found with 1 or 2, and 2 brings an align to about 0.6x the full search's time. */
 constexpr double kTiltPriorOrientationShare = 0.2;
 
 double maxTilt(const PhaserParameters& params)
@@ -43,8 +43,11 @@ StageParameters withTiltPrior(const StageParameters& params)
   StageParameters out = params;
   if (!priorOn(params))
     return out;
-  out.orientation_candidates = static_cast<int>(
-      std::ceil(kTiltPriorOrientationShare * params.orientation_candidates));
+  // Never fewer than the share of rotations the cone holds: wide cones keep them all.
+  const double cone_share = 0.5 * (1.0 - std::cos(maxTilt(params)));
+  out.orientation_candidates =
+      static_cast<int>(std::ceil(std::max(kTiltPriorOrientationShare, cone_share) *
+                                 params.orientation_candidates));
   return out;
 }
 
