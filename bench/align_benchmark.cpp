@@ -8,7 +8,7 @@
  *
  *   pcl_phaser_align_benchmark [SOURCE TARGET] [-r repetitions] [-b bandwidth]
  *                              [-range_only] [-plain] [-busy]
- *                              [-orientation_candidates N]
+ *                              [-orientation_candidates N] [-max_tilt DEG]
  *                              [-first threads [-warm_up [-keep_memory]]]
  * -range_only switches the intensity channel off, so the two runs show what fusing one
  * extra channel costs per stage; -plain refines the rotation on plain C only, not also
@@ -24,7 +24,9 @@
  * first transformation in full (doc/benchmarks.md, "First align in a process");
  * -warm_up runs pcl::phaser::warmUp on a thread while the clouds are read (as a batch
  * tool would) and prints its time and the reading's, -keep_memory sets its
- * WarmUpOptions::keep_memory.
+ * WarmUpOptions::keep_memory. -max_tilt DEG (or --max-tilt) compares, with 2 threads
+ * and a cached target, the full search with the gravity prior
+ * PhaserParameters::max_tilt_deg = DEG, their aligns alternating, and prints the ratio.
  */
 #include "cloud_reading.h"
 #include "fft_yardstick.h"
@@ -40,6 +42,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <optional>
@@ -274,6 +277,63 @@ int firstAlignRun(int argc, char** argv, const pcl::phaser::PhaserParameters& pa
   return 0;
 }
 
+/** One result's row of the -max_tilt table: median total and stages (ms / FFT units),
+ *  tilt of the estimate (deg), converged. */
+void printTiltRow(const char* label, const Row& r, double unit)
+{
+  const pcl::phaser::StageTimes& t = r.estimate.diagnostics.times;
+  const Eigen::Matrix4d& T = r.estimate.transformation;
+  const double tilt = std::acos(std::clamp(T(2, 2), -1.0, 1.0)) * 180.0 / M_PI;
+  std::printf(
+      "| %s | %.1f / %.2f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %zu "
+      "| %.2f | %s |\n",
+      label, r.total, r.total / unit, t.sht, t.so3, t.refinement, t.translation,
+      t.orientation, t.verification, r.total - t.total(),
+      r.estimate.diagnostics.hypotheses.size(), tilt,
+      r.estimate.converged ? "yes" : "no");
+}
+
+/** -max_tilt: the full search and the prior, 2 threads, cached targets, \a reps aligns
+ *  of each alternating (both see the same load); medians and their ratio. */
+void compareTilt(const Cloud::Ptr& source, const Cloud::Ptr& target, int reps,
+                 pcl::phaser::PhaserParameters params, bool range_only, double unit)
+{
+  const double max_tilt = params.max_tilt_deg;
+  pcl::PhaserRegistration<PointT, PointT> full, prior;
+  params.max_tilt_deg = 0.0;
+  configure(full, source, target, 2, params, range_only);
+  params.max_tilt_deg = max_tilt;
+  configure(prior, source, target, 2, params, range_only);
+  Cloud out;
+  full.align(out); // warm-up: plans, tables, the target caches
+  prior.align(out);
+  std::vector<Row> rows[2];
+  for (int i = 0; i < reps; ++i)
+    for (int k = 0; k < 2; ++k) {
+      auto& phaser = k == 0 ? full : prior;
+      const auto start = std::chrono::steady_clock::now();
+      phaser.align(out);
+      Row r;
+      r.total = msSince(start);
+      r.estimate = phaser.getResult();
+      rows[k].push_back(r);
+    }
+  for (auto& v : rows)
+    std::sort(v.begin(), v.end(),
+              [](const Row& a, const Row& b) { return a.total < b.total; });
+  const Row& f = rows[0][rows[0].size() / 2];
+  const Row& p = rows[1][rows[1].size() / 2];
+  std::printf("| search (2 threads, cached) | total | SHT | SO(3) corr | refinement | "
+              "translation | orientation | verification | other | hypotheses | "
+              "tilt (deg) | converged |\n|---|---|---|---|---|---|---|---|---|---|---|"
+              "---|\n");
+  printTiltRow("full", f, unit);
+  char label[64];
+  std::snprintf(label, sizeof(label), "max_tilt %g deg", max_tilt);
+  printTiltRow(label, p, unit);
+  std::printf("\nratio max_tilt / full: %.2f\n", p.total / f.total);
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -287,6 +347,8 @@ int main(int argc, char** argv)
   const bool range_only = pcl::console::find_switch(argc, argv, "-range_only");
   const bool normalized = !pcl::console::find_switch(argc, argv, "-plain");
   const bool busy = pcl::console::find_switch(argc, argv, "-busy");
+  if (pcl::console::parse_argument(argc, argv, "-max_tilt", params.max_tilt_deg) < 0)
+    pcl::console::parse_argument(argc, argv, "--max-tilt", params.max_tilt_deg);
   params.normalized_refinement = normalized;
   const std::string problem = pcl::phaser::validateParameters(params);
   if (reps < 1 || !problem.empty()) {
@@ -315,6 +377,10 @@ int main(int argc, char** argv)
       name.c_str(), source->size(), target->size(), params.bandwidth,
       range_only ? "range" : "range + intensity", normalized ? "normalized" : "plain",
       reps, busy ? ", one core kept busy by a spinning process" : "", unit);
+  if (params.max_tilt_deg > 0.0) {
+    compareTilt(source, target, reps, params, range_only, unit);
+    return 0;
+  }
   std::printf("| threads | target | total | first | target prep | sampling | SHT "
               "| SO(3) corr | refinement | translation | orientation | verification "
               "| other | passes |\n");

@@ -32,6 +32,7 @@ struct MethodSettings {
   bool normalized_refinement = true; ///< pcl_phaser's setNormalizedRefinement
   /** pcl_phaser's PhaserParameters::orientation_candidates; < 0: its default */
   int orientation_candidates = -1;
+  double max_tilt_deg = 0.0; ///< pcl_phaser's PhaserParameters::max_tilt_deg
 };
 
 /** \brief pcl_phaser's verification of its final pose (NaN for other methods): what

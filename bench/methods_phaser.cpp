@@ -39,6 +39,7 @@ MethodResult align(const typename pcl::PointCloud<PointP>::ConstPtr& source,
   params.normalized_refinement = settings.normalized_refinement;
   if (settings.orientation_candidates >= 0)
     params.orientation_candidates = settings.orientation_candidates;
+  params.max_tilt_deg = settings.max_tilt_deg;
   params.projection_center = settings.centroid
                                  ? pcl::phaser::ProjectionCenter::Centroid
                                  : pcl::phaser::ProjectionCenter::SensorOrigin;

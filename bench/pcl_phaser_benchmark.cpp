@@ -101,7 +101,9 @@ struct Options {
   unsigned seed = 1;
   bool icp = false, pairs = false;
   double rre_threshold = 5.0, rte_threshold = 0.6, t_max = 2.0;
-  double voxel = 0.0; ///< > 0: overrides the per-scan leaf of PCL's methods
+  double max_tilt_pose = 180.0; ///< degrees: random poses tilted less than this
+  double max_tilt = 0.0;        ///< pcl_phaser's PhaserParameters::max_tilt_deg
+  double voxel = 0.0;           ///< > 0: overrides the per-scan leaf of PCL's methods
   std::string csv, markdown, plots;
 };
 
@@ -131,6 +133,9 @@ void printHelp(const char* program)
       "  -orientation_candidates N  pcl_phaser's orientation hypotheses, 0..20\n"
       "                 (default: the library's, 10)\n"
       "  -t_max M       largest random translation in meters (default 2)\n"
+      "  -max_tilt_pose D  random rotations: uniform yaw, tilt below D deg (default\n"
+      "                 180: uniform on SO(3))\n"
+      "  -max_tilt D    pcl_phaser's gravity prior, max_tilt_deg (default 0: off)\n"
       "  -voxel V       leaf (m) of PCL's methods' downsampling; radii scale with it\n"
       "                 (default per scan: 1 m for LiDAR)\n"
       "  -csv FILE      every trial as CSV\n"
@@ -163,6 +168,8 @@ bool parseOptions(int argc, char** argv, Options& o)
   console::parse_argument(argc, argv, "-orientation_candidates",
                           o.orientation_candidates);
   console::parse_argument(argc, argv, "-t_max", o.t_max);
+  console::parse_argument(argc, argv, "-max_tilt_pose", o.max_tilt_pose);
+  console::parse_argument(argc, argv, "-max_tilt", o.max_tilt);
   console::parse_argument(argc, argv, "-voxel", o.voxel);
   console::parse_argument(argc, argv, "-csv", o.csv);
   console::parse_argument(argc, argv, "-md", o.markdown);
@@ -214,6 +221,10 @@ bool parseOptions(int argc, char** argv, Options& o)
     fail("-orientation_candidates");
   if (!(o.t_max >= 0.0))
     fail("-t_max");
+  if (!(o.max_tilt_pose > 0.0 && o.max_tilt_pose <= 180.0))
+    fail("-max_tilt_pose");
+  if (!(o.max_tilt >= 0.0 && o.max_tilt <= 180.0))
+    fail("-max_tilt");
   return ok;
 }
 
@@ -235,6 +246,7 @@ public:
     settings.seed = o_.seed + static_cast<unsigned>(base.pose);
     settings.fpcs_seconds = o_.fpcs_seconds;
     settings.orientation_candidates = o_.orientation_candidates;
+    settings.max_tilt_deg = o_.max_tilt;
     for (const std::string& name : o_.methods) {
       const Method& method =
           *std::find_if(allMethods().begin(), allMethods().end(),
@@ -330,7 +342,8 @@ void randomPoses(const Options& o, const std::map<std::string, Cloud::Ptr>& scan
           o.seed, static_cast<unsigned>(std::hash<std::string>{}(name + "/" + text))};
       std::mt19937 rng(seq);
       for (int k = 0; k < o.poses; ++k) {
-        const Eigen::Matrix4d T = randomPose(rng, o.t_max);
+        const Eigen::Matrix4d T =
+            randomPose(rng, o.t_max, o.max_tilt_pose * M_PI / 180.0);
         const Cloud::Ptr source = movedSource(*scan, condition, T, rng);
         Trial base;
         base.set = name;
@@ -385,7 +398,8 @@ void detection(const Options& o, const std::map<std::string, Cloud::Ptr>& scans,
       if (source_name == target_name)
         continue;
       for (int k = 0; k < o.poses; ++k) {
-        const Eigen::Matrix4d T = randomPose(rng, o.t_max);
+        const Eigen::Matrix4d T =
+            randomPose(rng, o.t_max, o.max_tilt_pose * M_PI / 180.0);
         const Cloud::Ptr source = movedSource(*source_scan, Condition{}, T, rng);
         Trial base;
         base.set = source_name + " vs " + target_name;

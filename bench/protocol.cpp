@@ -27,14 +27,24 @@ double rteM(const Eigen::Matrix4d& estimate, const Eigen::Matrix4d& truth)
   return (estimate.topRightCorner<3, 1>() - truth.topRightCorner<3, 1>()).norm();
 }
 
-Eigen::Matrix4d randomPose(std::mt19937& rng, double t_max)
+Eigen::Matrix4d randomPose(std::mt19937& rng, double t_max, double max_tilt)
 {
   std::normal_distribution<double> n01;
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
-  T.topLeftCorner<3, 3>() = Eigen::Quaterniond(n01(rng), n01(rng), n01(rng), n01(rng))
-                                .normalized()
-                                .toRotationMatrix();
+  if (max_tilt < M_PI) {
+    const double yaw = 2.0 * M_PI * u01(rng), azimuth = 2.0 * M_PI * u01(rng);
+    const double tilt = std::acos(1.0 - u01(rng) * (1.0 - std::cos(max_tilt)));
+    T.topLeftCorner<3, 3>() =
+        (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+         Eigen::AngleAxisd(tilt,
+                           Eigen::Vector3d(std::cos(azimuth), std::sin(azimuth), 0.0)))
+            .toRotationMatrix();
+  } else {
+    T.topLeftCorner<3, 3>() = Eigen::Quaterniond(n01(rng), n01(rng), n01(rng), n01(rng))
+                                  .normalized()
+                                  .toRotationMatrix();
+  }
   const Eigen::Vector3d direction =
       Eigen::Vector3d(n01(rng), n01(rng), n01(rng)).normalized();
   T.topRightCorner<3, 1>() = direction * t_max * std::cbrt(u01(rng));

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
 #include <random>
 #include <string>
 
@@ -29,8 +30,9 @@ double rreDeg(const Eigen::Matrix4d& estimate, const Eigen::Matrix4d& truth);
 double rteM(const Eigen::Matrix4d& estimate, const Eigen::Matrix4d& truth);
 
 /** \brief A uniform random rotation (normalized Gaussian quaternion) and a translation
- * uniform in the ball of radius \a t_max. */
-Eigen::Matrix4d randomPose(std::mt19937& rng, double t_max);
+ * uniform in the ball of radius \a t_max. Below pi, \a max_tilt (radians) restricts the
+ * rotation to a uniform yaw after a tilt uniform on the cap of that angle about z. */
+Eigen::Matrix4d randomPose(std::mt19937& rng, double t_max, double max_tilt = M_PI);
 
 /** \brief A perturbation of the source scan before it is moved. */
 struct Condition {

@@ -76,6 +76,11 @@ void printHelp(int, char** argv)
       "(X, Y, Z) in the target's frame;\n"
       "                          only target points a sensor there could see are used "
       "and no pose outside is returned\n"
+      "    --max-tilt DEG      = gravity prior: both clouds z-up (after the guess) up "
+      "to "
+      "DEG; only rotations tilting\n"
+      "                          the source less are searched, a result beyond is not "
+      "converged; %s, 0: off (default: 0)\n"
       "    --threads T         = worker threads, %s, 0: one per hardware thread "
       "(default: 0, here %u; the demo: %d)\n"
       "    --print-parameters  = print the range of every setting as a Markdown "
@@ -83,7 +88,7 @@ void printHelp(int, char** argv)
       rangeOf("bandwidth").c_str(), d.getBandwidth(),
       rangeOf("spatial_grid_size").c_str(), d.getParameters().spatial_grid_size,
       rangeOf("passes").c_str(), d.getParameters().passes,
-      rangeOf("num_threads").c_str(),
+      rangeOf("max_tilt_deg").c_str(), rangeOf("num_threads").c_str(),
       static_cast<unsigned>(pcl::phaser::resolveThreadCount(0)), default_demo_threads);
   print_info(
       "    -icp                = refine with point-to-plane ICP "
@@ -187,6 +192,7 @@ int compute(const pcl::PCLPointCloud2& source_blob,
   params.region_y = opt.region[1];
   params.region_z = opt.region[2];
   params.region_radius = opt.region[3];
+  params.max_tilt_deg = opt.max_tilt;
   phaser.setParameters(params);
   phaser.setInputSource(source);
   phaser.setInputTarget(target);
@@ -199,6 +205,8 @@ int compute(const pcl::PCLPointCloud2& source_blob,
              static_cast<unsigned>(
                  pcl::phaser::resolveThreadCount(int(phaser.getNumberOfThreads()))),
              opt.center.c_str());
+  if (params.max_tilt_deg > 0.0)
+    print_info("with a max tilt %g deg ", params.max_tilt_deg);
   TicToc tt;
   tt.tic();
   Cloud aligned;

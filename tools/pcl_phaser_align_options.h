@@ -68,6 +68,7 @@ struct Options {
   int threads = -1;                        // -1: the class default (the demo: 2)
   double icp_distance = default_icp_distance;
   double region[4] = {0, 0, 0, 0}; // x y z radius; radius 0: no position prior
+  double max_tilt = 0.0;           // degrees, 0: no gravity prior
   int width = default_width, height = default_height, seed = default_seed;
 };
 
@@ -92,17 +93,26 @@ struct Spec {
   const char *name, *alias;
   bool has_value;
 };
-const Spec specs[] = {
-    {"-b", "--bandwidth", true},   {"--grid", nullptr, true},
-    {"--passes", nullptr, true},   {"--center", "--center", true},
-    {"--threads", nullptr, true},  {"--region", nullptr, true},
-    {"-icp", "--icp", false},      {"--icp-point", nullptr, false},
-    {"--icp-dist", nullptr, true}, {"-o", nullptr, true},
-    {"-m", nullptr, true},         {"--screenshot", nullptr, true},
-    {"--size", nullptr, true},     {"--gt", nullptr, true},
-    {"--json", nullptr, false},    {"--demo", nullptr, false},
-    {"--seed", nullptr, true},     {"--print-parameters", nullptr, false},
-    {"-h", "--help", false}};
+const Spec specs[] = {{"-b", "--bandwidth", true},
+                      {"--grid", nullptr, true},
+                      {"--passes", nullptr, true},
+                      {"--center", "--center", true},
+                      {"--max-tilt", nullptr, true},
+                      {"--threads", nullptr, true},
+                      {"--region", nullptr, true},
+                      {"-icp", "--icp", false},
+                      {"--icp-point", nullptr, false},
+                      {"--icp-dist", nullptr, true},
+                      {"-o", nullptr, true},
+                      {"-m", nullptr, true},
+                      {"--screenshot", nullptr, true},
+                      {"--size", nullptr, true},
+                      {"--gt", nullptr, true},
+                      {"--json", nullptr, false},
+                      {"--demo", nullptr, false},
+                      {"--seed", nullptr, true},
+                      {"--print-parameters", nullptr, false},
+                      {"-h", "--help", false}};
 
 inline const Spec* findSpec(const char* arg)
 {
@@ -248,13 +258,34 @@ inline int parseRegion(const std::string& text, Options& opt)
   return (kOk);
 }
 
-/** \brief Parse the other valued registration options: --center, --region, --icp-dist,
- *  --size. \return kOk or kUsage (after fail()) */
+/** \brief Parse --max-tilt DEG into \a opt, checked against the range of
+ * PhaserParameters::max_tilt_deg.
+ * \return kOk or kUsage (after fail()) */
+inline int parseMaxTilt(int argc, char** argv, Options& opt)
+{
+  std::string text;
+  if (!optionValue(argc, argv, *findSpec("--max-tilt"), text))
+    return (kOk);
+  const pcl::phaser::ParameterRange* r =
+      pcl::phaser::findParameterRange("max_tilt_deg");
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !(v >= r->min && v <= r->max))
+    return (fail(kUsage, "Invalid --max-tilt '%s': expected degrees in %g..%g (%s).",
+                 text.c_str(), r->min, r->max, r->meaning));
+  opt.max_tilt = v;
+  return (kOk);
+}
+
+/** \brief Parse the other valued registration options: --center, --max-tilt,
+ *  --region, --icp-dist, --size. \return kOk or kUsage (after fail()) */
 inline int parseValueOptions(int argc, char** argv, Options& opt)
 {
   std::string text;
   if (optionValue(argc, argv, *findSpec("--region"), text) &&
       parseRegion(text, opt) != kOk)
+    return (kUsage);
+  if (parseMaxTilt(argc, argv, opt) != kOk)
     return (kUsage);
   if (optionValue(argc, argv, *findSpec("--center"), text)) {
     if (text != "sensor" && text != "centroid" && text != "auto")

@@ -72,8 +72,8 @@ void printHelp(const char* name)
       "hardware "
       "threads split between the jobs)\n"
       "    --cache N         = prepared targets kept per job, 1..4096 (default: 4)\n"
-      "    -b B, --grid N, --passes K, --center sensor|centroid|auto = as in "
-      "pcl_phaser_align\n"
+      "    -b B, --grid N, --passes K, --center sensor|centroid|auto, --max-tilt DEG "
+      "= as in pcl_phaser_align\n"
       "  merge OUT PARTS... joins shard outputs: .jsonl parts into OUT.jsonl (every "
       "pair exactly once),\n"
       "  .g2o parts into OUT.g2o. Exit codes: 0 done (failed pairs are recorded with "
@@ -100,8 +100,8 @@ int collect(int argc, char** argv, Given& given)
       {"--out", true},    {"--g2o", true},       {"--shard", true},
       {"--cache", true},  {"--jobs", true},      {"--threads", true},
       {"-b", true},       {"--bandwidth", true}, {"--grid", true},
-      {"--passes", true}, {"--center", true},    {"-h", false},
-      {"--help", false}};
+      {"--passes", true}, {"--center", true},    {"--max-tilt", true},
+      {"-h", false},      {"--help", false}};
   for (int i = 1; i < argc; ++i) {
     const auto spec = takes_value.find(argv[i]);
     if (spec == takes_value.end())
@@ -140,6 +140,23 @@ int setting(const Given& given, const std::string& name, const char* field, int&
   return integer(given, name, long(r->min), long(r->max), value);
 }
 
+/** \brief --max-tilt DEG into PhaserParameters::max_tilt_deg, in its range. */
+int maxTilt(const Given& given, pcl::phaser::PhaserParameters& p)
+{
+  const auto it = given.find("--max-tilt");
+  if (it == given.end())
+    return batch::kOk;
+  const pcl::phaser::ParameterRange* r =
+      pcl::phaser::findParameterRange("max_tilt_deg");
+  char* end = nullptr;
+  const double v = std::strtod(it->second.c_str(), &end);
+  if (it->second.empty() || *end != '\0' || !(v >= r->min && v <= r->max))
+    return usage("Invalid --max-tilt '" + it->second +
+                 "': expected degrees in [0, 180]");
+  p.max_tilt_deg = v;
+  return batch::kOk;
+}
+
 int engineSettings(const Given& given, pcl::phaser::PhaserParameters& p, int& cache,
                    int& jobs)
 {
@@ -162,7 +179,7 @@ int engineSettings(const Given& given, pcl::phaser::PhaserParameters& p, int& ca
                    "': expected sensor, centroid or auto");
     p.projection_center = centers.at(center->second);
   }
-  return batch::kOk;
+  return maxTilt(given, p);
 }
 
 /** \brief --shard, else the Slurm array task, else 0/1. */

@@ -363,3 +363,78 @@ TEST(So3Correlation, TiltLimitedGridEqualsFullRows)
   EXPECT_THROW(betaRowsForTilt(B, -1.0), InvalidArgument);
   EXPECT_THROW(corr->correlate(F, H, 1, -1), InvalidArgument);
 }
+
+TEST(So3Correlation, LimitedRowsKeepInConePeaks)
+{
+  // The target holds the source's lobes twice: rotated by R_in (5 deg tilt) and,
+  // stronger, by R_out (70 deg tilt). The global maximum lies outside a 20 deg cone;
+  // the lesser peaks inside it are what a gravity prior keeps.
+  const int B = 16;
+  std::mt19937 rng(7);
+  std::vector<Eigen::Vector3d> src, tgt;
+  std::vector<double> w, wt;
+  const Eigen::Matrix3d R_in = (Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()) *
+                                Eigen::AngleAxisd(5.0 * kDeg, Eigen::Vector3d::UnitX()))
+                                   .toRotationMatrix();
+  const Eigen::Matrix3d R_out =
+      (Eigen::AngleAxisd(2.0, Eigen::Vector3d::UnitZ()) *
+       Eigen::AngleAxisd(70.0 * kDeg, Eigen::Vector3d::UnitY()))
+          .toRotationMatrix();
+  for (int i = 0; i < 8; ++i) {
+    src.push_back(test::randomRotation(rng).col(0));
+    w.push_back(1.0 + 0.3 * i);
+    tgt.push_back(R_in * src.back());
+    wt.push_back(w.back());
+    tgt.push_back(R_out * src.back());
+    wt.push_back(1.2 * w.back());
+  }
+  const auto sht = SphericalHarmonicTransform::instance(B);
+  const SphericalSpectrum F =
+      sht->forward(test::lobeSamples(B, tgt, wt, 0.6 * B).data());
+  const SphericalSpectrum H =
+      sht->forward(test::lobeSamples(B, src, w, 0.6 * B).data());
+  const auto corr = So3Correlator::instance(B);
+  const So3CorrelationGrid full = corr->correlate(F, H, 2);
+  const int rows = betaRowsForTilt(B, 20.0 * kDeg);
+  const So3CorrelationGrid part = corr->correlate(F, H, 2, rows);
+  const So3GridIndex global = full.argmax(2);
+  EXPECT_GE(global.beta, rows) << "the fixture's best peak should be out of the cone";
+  const std::vector<So3GridIndex> peaks = distinctPeaks(part, 5, 10.0 * kDeg, 2);
+  ASSERT_FALSE(peaks.empty());
+  const So3GridIndex best = part.argmax(2);
+  EXPECT_EQ(peaks[0].beta, best.beta);
+  EXPECT_EQ(peaks[0].alpha, best.alpha);
+  EXPECT_EQ(peaks[0].gamma, best.gamma);
+  double scale = 0.0;
+  for (int j = 0; j < full.size(); ++j)
+    for (int a = 0; a < full.size(); ++a)
+      for (int c = 0; c < full.size(); ++c)
+        scale = std::max(scale, std::abs(full(j, a, c)));
+  for (const So3GridIndex& p : peaks) {
+    // Inside the cone, with its neighbors computed, and a true maximum of the full
+    // grid.
+    EXPECT_LT(p.beta, rows - 1);
+    const double tilt = gridEuler(p, B).beta;
+    EXPECT_LE(tilt, 20.0 * kDeg);
+    for (const RotationSample& s : rotationNeighborhood(full, p, 1))
+      EXPECT_LE(s.value, full(p) + 1e-12 * scale);
+  }
+  // The full grid's in-cone maxima that no stronger peak shadows are kept, in order.
+  const std::vector<So3GridIndex> all = distinctPeaks(full, 100000, 0.0, 2);
+  std::vector<So3GridIndex> in_cone;
+  for (const So3GridIndex& p : all) {
+    bool shadowed = p.beta >= rows - 1;
+    const Eigen::Matrix3d R = rotationFromEuler(gridEuler(p, B));
+    for (const So3GridIndex& q : in_cone)
+      shadowed = shadowed ||
+                 rotationDistance(R, rotationFromEuler(gridEuler(q, B))) <= 10.0 * kDeg;
+    if (!shadowed)
+      in_cone.push_back(p);
+  }
+  ASSERT_GE(in_cone.size(), 1u);
+  for (std::size_t k = 0; k < std::min(in_cone.size(), peaks.size()); ++k) {
+    EXPECT_EQ(in_cone[k].beta, peaks[k].beta) << k;
+    EXPECT_EQ(in_cone[k].alpha, peaks[k].alpha) << k;
+    EXPECT_EQ(in_cone[k].gamma, peaks[k].gamma) << k;
+  }
+}

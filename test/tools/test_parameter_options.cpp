@@ -111,3 +111,25 @@ TEST(ParameterOptions, RegionIsFourNumbersWithAPositiveRadius)
   const Output good = run("--demo --region 0,0,0,10 -m /dev/null.pcd", true);
   EXPECT_EQ(good.code, 0) << good.text;
 }
+
+TEST(ParameterOptions, MaxTiltIsParsedAndRefusedOutsideItsRange)
+{
+  const Output help = run("-h", true);
+  EXPECT_TRUE(has(help.text, "--max-tilt DEG")) << help.text;
+  EXPECT_TRUE(has(help.text, "0..180, 0: off")) << help.text;
+  for (const char* args :
+       {"--demo --max-tilt 181", "--demo --max-tilt -1", "--demo --max-tilt ten",
+        "--demo --max-tilt nan", "--demo --max-tilt 10x"}) {
+    const Output bad = run(args, true);
+    EXPECT_EQ(bad.code, 1) << args;
+    EXPECT_TRUE(has(bad.text, "Invalid --max-tilt")) << bad.text;
+    EXPECT_TRUE(has(bad.text, "expected degrees in 0..180 (gravity prior")) << bad.text;
+  }
+  const Output missing = run("--demo --max-tilt", true);
+  EXPECT_EQ(missing.code, 1);
+  EXPECT_TRUE(has(missing.text, "needs a value")) << missing.text;
+  // Within the range the demo runs (its pair is tilted under 3 deg: found).
+  const Output good = run("--demo --max-tilt 10 -m /dev/null.pcd", true);
+  EXPECT_FALSE(has(good.text, "Invalid")) << good.text;
+  EXPECT_TRUE(has(good.text, "max tilt 10 deg")) << good.text;
+}

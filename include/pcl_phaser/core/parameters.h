@@ -61,6 +61,11 @@ struct PhaserParameters {
   /** \brief With a region: target points farther than region_radius + this from its
    *  center are left out; 0: the source's 99th-percentile range, rounded up to 10 m. */
   double sensor_range = 0.0;
+  /** \brief Gravity prior, degrees (0: off). Both clouds are z-up after the guess (or
+   *  the guess makes them so) up to this tilt: only rotations tilting the source by
+   *  less are searched, and a result tilted more is replaced by the best hypothesis
+   *  within it and not converged. Wrong for a rig held at an angle. */
+  double max_tilt_deg = 0.0;
 };
 
 /** \brief One row of kParameterRanges: a numeric field of PhaserParameters. */
@@ -119,7 +124,9 @@ inline constexpr ParameterRange kParameterRanges[] = {
     {"region_z", nullptr, &PhaserParameters::region_z, -1e6, 1e6, "m",
      "position prior: region center, target frame"},
     {"sensor_range", nullptr, &PhaserParameters::sensor_range, 0, 1e4, "m",
-     "position prior: target points within region_radius + this are used (0: auto)"}};
+     "position prior: target points within region_radius + this are used (0: auto)"},
+    {"max_tilt_deg", nullptr, &PhaserParameters::max_tilt_deg, 0, 180, "deg",
+     "gravity prior: largest tilt of the rotation searched (0: off)"}};
 
 /** \brief The row of field \a name in kParameterRanges; null when there is none. */
 const ParameterRange* findParameterRange(const std::string& name);

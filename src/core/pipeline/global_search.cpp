@@ -7,6 +7,7 @@
  */
 #include "pipeline/pipeline_internal.h"
 #include "pipeline/region.h"
+#include "pipeline/tilt_prior.h"
 
 namespace pcl::phaser {
 namespace detail {
@@ -73,7 +74,7 @@ std::vector<Hypothesis> rotationHypotheses(const SourceContext& source,
   const SphericalSpectrum O =
       orientationSpectrum(source.patches, bandwidth, params.num_threads);
   const So3CorrelationGrid Co = So3Correlator::instance(bandwidth)->correlate(
-      target.orientation, O, params.num_threads);
+      target.orientation, O, params.num_threads, tiltPriorRows(params, bandwidth));
   const double norm =
       std::sqrt(spectrumSquaredNorm(target.orientation) * spectrumSquaredNorm(O));
   const std::vector<So3GridIndex> orientation_peaks =

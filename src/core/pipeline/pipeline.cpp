@@ -5,6 +5,7 @@
  * The target model, the source context and the order of the stages of one estimate.
  */
 #include "pipeline/pipeline_internal.h"
+#include "pipeline/tilt_prior.h"
 
 namespace pcl::phaser {
 namespace detail {
@@ -201,9 +202,10 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
 }
 
 RigidPose estimateCentered(const TargetModel& target, const Eigen::Matrix3Xd& points,
-                           const StageParameters& params,
+                           const StageParameters& requested,
                            const ChannelValues& raw_channels, PhaserResult& result)
 {
+  const StageParameters params = withTiltPrior(requested);
   const ChannelValues channels = normalizeChannels(raw_channels, points.cols());
   PhaserDiagnostics& diagnostics = result.diagnostics;
   StageTimes& times = diagnostics.times;
@@ -213,7 +215,8 @@ RigidPose estimateCentered(const TargetModel& target, const Eigen::Matrix3Xd& po
       sphericalSpectrum(points, channels, params, "source", times);
   const auto start = Clock::now();
   const So3CorrelationGrid C = So3Correlator::instance(params.bandwidth)
-                                   ->correlate(target.spherical, H, params.num_threads);
+                                   ->correlate(target.spherical, H, params.num_threads,
+                                               tiltPriorRows(params, params.bandwidth));
   times.so3 += msSince(start);
   GlobalSearch search =
       globalSearch(source, C, std::sqrt(spectrumSquaredNorm(H)), times);
@@ -223,6 +226,7 @@ RigidPose estimateCentered(const TargetModel& target, const Eigen::Matrix3Xd& po
   Pose pose = reprojectionPasses(source, search.pose, diagnostics.passes, times);
   pose = refineFinalPose(source, pose, result);
   judgeFinalPose(source, pose, result);
+  keepWithinTiltPrior(params, pose, result);
   return pose;
 }
 

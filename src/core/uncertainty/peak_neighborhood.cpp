@@ -62,15 +62,18 @@ struct PeakCandidate {
 };
 
 /** The local maxima (26 neighbors, wrapping as valueAt does) of \a grid in the upper
- *  half of its value range, best first (ties by flat index): the value range per beta
- *  row, then the maxima per row joined in row order, whatever the thread count. */
+ *  half of its value range (of the rows searched), best first (ties by flat index): the
+ * value range per beta row, then the maxima per row joined in row order, whatever the
+ * thread count. */
 std::vector<PeakCandidate> upperLocalMaxima(const So3CorrelationGrid& grid, int threads)
 {
   const int N = grid.size();
-  std::vector<double> row_lo(static_cast<std::size_t>(N)), row_hi(row_lo.size());
-  std::vector<std::vector<PeakCandidate>> rows(static_cast<std::size_t>(N));
+  // On a grid limited in tilt, the rows whose beta neighbors were computed (as argmax).
+  const int R = grid.betaRows() < N ? std::max(1, grid.betaRows() - 1) : N;
+  std::vector<double> row_lo(static_cast<std::size_t>(R)), row_hi(row_lo.size());
+  std::vector<std::vector<PeakCandidate>> rows(static_cast<std::size_t>(R));
   detail::parallelFor(
-      N, 4, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+      R, 4, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
         for (std::ptrdiff_t j = first; j < last; ++j) {
           // Four independent running extremes: one chain would wait on each comparison.
           constexpr double inf = std::numeric_limits<double>::infinity();
@@ -89,7 +92,7 @@ std::vector<PeakCandidate> upperLocalMaxima(const So3CorrelationGrid& grid, int 
   const double hi = *std::max_element(row_hi.begin(), row_hi.end());
   const double floor = lo + 0.5 * (hi - lo);
   detail::parallelFor(
-      N, 4, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
+      R, 4, threads, [&](std::ptrdiff_t first, std::ptrdiff_t last, int) {
         for (int j = static_cast<int>(first); j < last; ++j)
           for (int a = 0; a < N; ++a) {
             for (int c = 0; c < N; ++c) {

@@ -35,7 +35,8 @@ std::vector<RotationSample> rotationNeighborhood(const So3CorrelationGrid& grid,
 /** \brief Up to \a count grid peaks, best first (ties: lowest flat index): samples in
  *  the upper half of the value range that are maxima of their 3x3x3 block and lie more
  *  than \a min_separation radians from every peak taken. The result does not depend
- *  on \a num_threads. */
+ *  on \a num_threads. On a grid limited in tilt (So3CorrelationGrid::betaRows) only
+ *  the rows whose beta neighbors were computed are searched, the range over them. */
 std::vector<So3GridIndex> distinctPeaks(const So3CorrelationGrid& grid, int count,
                                         double min_separation, int num_threads = 1);
 
