@@ -10,6 +10,7 @@ refine it, and a PNG of the overlay (source red, target green) rendered headless
 The PNG comes from Open3D's renderer when it has a display (run under xvfb-run for
 one without); otherwise, or if that fails, from matplotlib as a top view.
 """
+import os
 import sys
 
 import numpy as np
@@ -52,13 +53,16 @@ def render_open3d(source, target, T, png):
             return False
         vis.add_geometry(tgt)
         vis.add_geometry(src)
+        vis.get_render_option().point_size = 1.5
         vis.get_view_control().set_front([0, 0, 1])
         vis.get_view_control().set_up([0, 1, 0])
         vis.poll_events()
         vis.update_renderer()
-        ok = vis.capture_screen_image(png, do_render=True)
+        if os.path.exists(png):
+            os.remove(png)
+        vis.capture_screen_image(png, do_render=True)  # returns None in Open3D 0.16
         vis.destroy_window()
-        return bool(ok)
+        return os.path.exists(png) and os.path.getsize(png) > 0
     except Exception:  # no display, no OpenGL: use the fallback
         return False
 
