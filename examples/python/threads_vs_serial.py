@@ -11,6 +11,7 @@ Reads binary PCD (x y z intensity first) or KITTI .bin; the second align is the 
 swapped, so both threads have the same amount of work.
 """
 import argparse
+import os
 import statistics
 import threading
 import time
@@ -59,8 +60,9 @@ def main():
     t = statistics.median(r[1] for r in rows)
     ratios = sorted(r[0] / r[1] for r in rows)
     print("serial %.1f ms, two threads %.1f ms (medians of %d); serial / threads %.2f "
-          "(range %.2f-%.2f)" % (1e3 * s, 1e3 * t, args.runs, s / t, ratios[0],
-                                 ratios[-1]))
+          "(range %.2f-%.2f); load average %.1f" % (1e3 * s, 1e3 * t, args.runs, s / t,
+                                                    ratios[0], ratios[-1],
+                                                    os.getloadavg()[0]))
 
 
 if __name__ == "__main__":
