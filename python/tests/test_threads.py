@@ -23,11 +23,12 @@ def test_a_python_thread_runs_while_an_align_runs(synthetic_pair):
     worker.start()
     while worker.is_alive():
         ticks.append(time.perf_counter())
+        time.sleep(0.001)
     worker.join()
     start, end = interval
     inside = sum(start < t < end for t in ticks)
     # With the GIL held this thread could not run until the align returned.
-    assert inside > 100, (inside, end - start)
+    assert inside >= 20, (inside, end - start)
 
 
 def test_two_threads_align_at_once_with_the_serial_results(synthetic_pair):
