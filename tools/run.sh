@@ -16,6 +16,11 @@ packages=(g++ make cmake pkg-config libpcl-dev libeigen3-dev libfftw3-dev libboo
 if [[ $job == benchmark ]]; then packages+=(gnuplot-nox); fi
 # The batch tool's tests run it sharded under GNU parallel and a single-node Slurm.
 if [[ $job == test ]]; then packages+=(parallel slurm-wlm munge); fi
+# The Python module (built when pybind11 is found) and its pytest suite (label python).
+if [[ $job == test ]]; then
+  packages+=(python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
+             python3-distributed python3-open3d)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,0 +1,155 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ *
+ * numpy out: pcl_phaser.Result and what it holds (Verification, Hypothesis,
+ * StageTimes, Diagnostics), read-only; matrices are numpy arrays.
+ */
+#include "bindings.h"
+
+#include <Eigen/Geometry>
+
+#include <cstdio>
+
+namespace pcl::phaser::python {
+
+namespace {
+
+std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0)
+{
+  char buffer[160];
+  std::snprintf(buffer, sizeof(buffer), pattern, a, b, c);
+  return buffer;
+}
+
+double rotationDeg(const Eigen::Matrix4d& T)
+{
+  return Eigen::AngleAxisd(Eigen::Matrix3d(T.topLeftCorner<3, 3>())).angle() * 180.0 /
+         M_PI;
+}
+
+std::string reprOf(const AlignResult& a)
+{
+  const PhaserResult& r = a.result;
+  if (!r.error.empty())
+    return "Result(error=" + std::string(py::repr(py::str(r.error))) + ")";
+  const PhaserDiagnostics& d = r.diagnostics;
+  const Eigen::Vector3d t = r.transformation.topRightCorner<3, 1>();
+  return std::string("Result(converged=") + (r.converged ? "True" : "False") +
+         format(", rotation %.3f deg", rotationDeg(r.transformation)) +
+         format(", translation [%.4f, %.4f, %.4f] m,\n", t.x(), t.y(), t.z()) +
+         format("       inlier_fraction %.3f, free_space_violation %.4f / %.4f,",
+                d.verification.inlier_fraction, d.verification.free_space_violation,
+                d.verification.reverse_free_space_violation) +
+         format(" constraint %.3f, rank %.3f,\n", d.verification.constraint,
+                d.verification.rank) +
+         format("       %.0f hypotheses (chosen %.0f), %.1f ms)",
+                static_cast<double>(d.hypotheses.size()), r.chosen_hypothesis,
+                d.times.total());
+}
+
+void bindParts(py::module_& m)
+{
+  py::class_<Verification>(m, "Verification", "How a pose verifies; shares in [0, 1].")
+      .def_readonly("inlier_fraction", &Verification::inlier_fraction)
+      .def_readonly("score", &Verification::score)
+      .def_readonly("free_space_violation", &Verification::free_space_violation)
+      .def_readonly("reverse_free_space_violation",
+                    &Verification::reverse_free_space_violation)
+      .def_readonly("constraint", &Verification::constraint)
+      .def_readonly("rank", &Verification::rank)
+      .def("__repr__", [](const Verification& v) {
+        return format("Verification(inlier_fraction=%.4f, score=%.4f, ",
+                      v.inlier_fraction, v.score) +
+               format("free_space_violation=%.4f, reverse_free_space_violation=%.4f, ",
+                      v.free_space_violation, v.reverse_free_space_violation) +
+               format("constraint=%.4f, rank=%.4f)", v.constraint, v.rank);
+      });
+  py::class_<Hypothesis>(m, "Hypothesis", "A verified hypothesis of the global search.")
+      .def_readonly("transformation", &Hypothesis::transformation)
+      .def_readonly("rotation", &Hypothesis::rotation)
+      .def_readonly("translation", &Hypothesis::translation)
+      .def_readonly("rotation_score", &Hypothesis::rotation_score)
+      .def_readonly("overlap", &Hypothesis::overlap)
+      .def_readonly("from_orientation", &Hypothesis::from_orientation)
+      .def_readonly("verification", &Hypothesis::verification)
+      .def("__repr__", [](const Hypothesis& h) {
+        return format("Hypothesis(rotation %.3f deg, rank %.4f, from_orientation=",
+                      rotationDeg(h.transformation), h.verification.rank) +
+               (h.from_orientation ? "True)" : "False)");
+      });
+  py::class_<StageTimes>(m, "StageTimes", "Milliseconds spent in each stage.")
+      .def_readonly("target", &StageTimes::target)
+      .def_readonly("sampling", &StageTimes::sampling)
+      .def_readonly("sht", &StageTimes::sht)
+      .def_readonly("so3", &StageTimes::so3)
+      .def_readonly("refinement", &StageTimes::refinement)
+      .def_readonly("translation", &StageTimes::translation)
+      .def_readonly("verification", &StageTimes::verification)
+      .def_readonly("orientation", &StageTimes::orientation)
+      .def_property_readonly("total", &StageTimes::total)
+      .def("__repr__", [](const StageTimes& t) {
+        return format("StageTimes(total %.1f ms, target %.1f ms)", t.total(), t.target);
+      });
+}
+
+void bindDiagnostics(py::module_& m)
+{
+  using D = PhaserDiagnostics;
+  py::class_<D>(m, "Diagnostics", "What one align measured on the way to its answer.")
+      .def_readonly("rotation_score", &D::rotation_score)
+      .def_readonly("translation_score", &D::translation_score)
+      .def_readonly("normalized_overlap", &D::normalized_overlap)
+      .def_readonly("verification", &D::verification)
+      .def_readonly("runner_up_rank", &D::runner_up_rank)
+      .def_readonly("runner_up_error", &D::runner_up_error)
+      .def_readonly("verification_radius", &D::verification_radius)
+      .def_readonly("verification_samples", &D::verification_samples)
+      .def_readonly("verified", &D::verified)
+      .def_readonly("hypotheses", &D::hypotheses)
+      .def_readonly("passes", &D::passes)
+      .def_readonly("rotation_samples", &D::rotation_samples)
+      .def_readonly("rotation_weights", &D::rotation_weights)
+      .def_readonly("times", &D::times);
+}
+
+} // namespace
+
+void bindResult(py::module_& m)
+{
+  bindParts(m);
+  bindDiagnostics(m);
+  using R = AlignResult;
+  py::class_<R>(m, "Result",
+                "What one align found: transformation (T_target_source, p_target = T "
+                "p_source), converged, covariance (6 x 6, rotation vector then "
+                "translation), the verification figures, hypotheses, stage timings; "
+                "error: why it was refused ('' on success).")
+      .def_property_readonly("error", [](const R& r) { return r.result.error; })
+      .def_property_readonly("transformation",
+                             [](const R& r) { return r.result.transformation; })
+      .def_property_readonly("converged", [](const R& r) { return r.result.converged; })
+      .def_readonly("covariance", &R::covariance)
+      .def_property_readonly("projection_center",
+                             [](const R& r) { return r.result.projection_center; })
+      .def_property_readonly("chosen_hypothesis",
+                             [](const R& r) { return r.result.chosen_hypothesis; })
+      .def_property_readonly("lever_arm", [](const R& r) { return r.result.lever_arm; })
+      .def_property_readonly("translation_covariance",
+                             [](const R& r) { return r.result.translation_covariance; })
+      .def_property_readonly("fit_covariance",
+                             [](const R& r) { return r.result.fit_covariance; })
+      .def_property_readonly("diagnostics",
+                             [](const R& r) { return r.result.diagnostics; })
+      .def_property_readonly(
+          "verification", [](const R& r) { return r.result.diagnostics.verification; })
+      .def_property_readonly("hypotheses",
+                             [](const R& r) { return r.result.diagnostics.hypotheses; })
+      .def_property_readonly("times",
+                             [](const R& r) { return r.result.diagnostics.times; })
+      .def("__repr__", &reprOf)
+      .def(py::pickle([](const R& r) { return resultState(r); },
+                      [](const py::bytes& state) { return resultFromState(state); }));
+}
+
+} // namespace pcl::phaser::python
