@@ -24,7 +24,9 @@ namespace bench {
 /** \brief What a method may be tuned with; scale-dependent radii derive from voxel. */
 struct MethodSettings {
   double voxel = 0.5;    ///< leaf of the downsampling for PCL's methods (m)
-  bool centroid = false; ///< pcl_phaser: project about the centroids
+  bool centroid = false; ///< pcl_phaser: project about the centroids (overrides center)
+  /** pcl_phaser's projection center: sensor, centroid or auto; empty: its default */
+  std::string center;
   int threads = 2;
   int bandwidth = 64;                ///< pcl_phaser spherical bandwidth
   unsigned seed = 1;                 ///< std::srand seed of PCL's randomized aligners

@@ -40,9 +40,13 @@ MethodResult align(const typename pcl::PointCloud<PointP>::ConstPtr& source,
   if (settings.orientation_candidates >= 0)
     params.orientation_candidates = settings.orientation_candidates;
   params.max_tilt_deg = settings.max_tilt_deg;
-  params.projection_center = settings.centroid
-                                 ? pcl::phaser::ProjectionCenter::Centroid
-                                 : pcl::phaser::ProjectionCenter::SensorOrigin;
+  using Center = pcl::phaser::ProjectionCenter;
+  if (settings.centroid || settings.center == "centroid")
+    params.projection_center = Center::Centroid;
+  else if (settings.center == "sensor")
+    params.projection_center = Center::SensorOrigin;
+  else if (settings.center == "auto")
+    params.projection_center = Center::Automatic;
   phaser.setParameters(params);
   phaser.setInputSource(source);
   phaser.setInputTarget(target);

@@ -104,6 +104,7 @@ struct Options {
   double max_tilt_pose = 180.0; ///< degrees: random poses tilted less than this
   double max_tilt = 0.0;        ///< pcl_phaser's PhaserParameters::max_tilt_deg
   double voxel = 0.0;           ///< > 0: overrides the per-scan leaf of PCL's methods
+  std::string center;           ///< pcl_phaser's projection center; empty: its default
   std::string csv, markdown, plots;
 };
 
@@ -136,6 +137,8 @@ void printHelp(const char* program)
       "  -max_tilt_pose D  random rotations: uniform yaw, tilt below D deg (default\n"
       "                 180: uniform on SO(3))\n"
       "  -max_tilt D    pcl_phaser's gravity prior, max_tilt_deg (default 0: off)\n"
+      "  -center C      pcl_phaser's projection center: sensor, centroid or auto\n"
+      "                 (default: the library's)\n"
       "  -voxel V       leaf (m) of PCL's methods' downsampling; radii scale with it\n"
       "                 (default per scan: 1 m for LiDAR)\n"
       "  -csv FILE      every trial as CSV\n"
@@ -171,6 +174,7 @@ bool parseOptions(int argc, char** argv, Options& o)
   console::parse_argument(argc, argv, "-max_tilt_pose", o.max_tilt_pose);
   console::parse_argument(argc, argv, "-max_tilt", o.max_tilt);
   console::parse_argument(argc, argv, "-voxel", o.voxel);
+  console::parse_argument(argc, argv, "-center", o.center);
   console::parse_argument(argc, argv, "-csv", o.csv);
   console::parse_argument(argc, argv, "-md", o.markdown);
   console::parse_argument(argc, argv, "-plots", o.plots);
@@ -225,6 +229,9 @@ bool parseOptions(int argc, char** argv, Options& o)
     fail("-max_tilt_pose");
   if (!(o.max_tilt >= 0.0 && o.max_tilt <= 180.0))
     fail("-max_tilt");
+  if (!o.center.empty() && o.center != "sensor" && o.center != "centroid" &&
+      o.center != "auto")
+    fail("-center " + o.center);
   return ok;
 }
 
@@ -247,6 +254,7 @@ public:
     settings.fpcs_seconds = o_.fpcs_seconds;
     settings.orientation_candidates = o_.orientation_candidates;
     settings.max_tilt_deg = o_.max_tilt;
+    settings.center = o_.center;
     for (const std::string& name : o_.methods) {
       const Method& method =
           *std::find_if(allMethods().begin(), allMethods().end(),

@@ -53,6 +53,7 @@ struct RevisitOptions {
   unsigned seed = 1;
   double voxel = 1.0; ///< leaf of PCL's methods, as for the compare study's LiDAR
   double source_wedge = 1.0; ///< azimuth share of each source kept (-source-wedge)
+  std::string center;        ///< pcl_phaser's projection center; empty: its default
   /** -reference-drift: linear odometry drift (world, m per scan index) removed from
    *  the reference poses (correctDrift()); empty: none */
   std::vector<double> drift;
@@ -85,6 +86,7 @@ bool parseRevisitOptions(int argc, char** argv, RevisitOptions& o)
   console::parse_argument(argc, argv, "-fpcs_time", o.fpcs_seconds);
   console::parse_argument(argc, argv, "-orientation_candidates",
                           o.orientation_candidates);
+  console::parse_argument(argc, argv, "-center", o.center);
   console::parse_argument(argc, argv, "-csv", o.csv);
   console::parse_argument(argc, argv, "-md", o.markdown);
   console::parse_argument(argc, argv, "-plots", o.plots);
@@ -116,6 +118,9 @@ bool parseRevisitOptions(int argc, char** argv, RevisitOptions& o)
     fail("-fpcs_time");
   if (o.orientation_candidates > 20)
     fail("-orientation_candidates");
+  if (!o.center.empty() && o.center != "sensor" && o.center != "centroid" &&
+      o.center != "auto")
+    fail("-center " + o.center);
   if (!o.drift.empty() &&
       (o.drift.size() != 3 ||
        !Eigen::Vector3d(o.drift[0], o.drift[1], o.drift[2]).allFinite()))
@@ -199,6 +204,7 @@ std::vector<RevisitTrial> runTrials(const RevisitOptions& o, const std::string& 
   settings.seed = o.seed; // + pose, which is 0 for real pairs
   settings.fpcs_seconds = o.fpcs_seconds;
   settings.orientation_candidates = o.orientation_candidates;
+  settings.center = o.center;
   std::map<std::string, Cloud::ConstPtr> scans; // each read once
   auto scan = [&](const std::string& name) {
     if (!scans.count(name))
@@ -405,6 +411,8 @@ void printRevisitsHelp(const char* program)
       "  -fpcs_time S     time limit of FPCS/KFPCS in seconds (default 10)\n"
       "  -orientation_candidates N  pcl_phaser's orientation hypotheses, 0..20\n"
       "                   (default: the library's, 10)\n"
+      "  -center C        pcl_phaser's projection center: sensor, centroid or auto\n"
+      "                   (default: the library's)\n"
       "  -csv FILE        every trial as CSV\n"
       "  -md FILE         the markdown summary (default: stdout)\n"
       "  -plots DIR       revisits_success.{dat,gp,png} (PNG with gnuplot)\n"

@@ -62,7 +62,7 @@ const double demo_icp_rre_deg = 0.1, demo_icp_rte_m = 0.02;
 
 struct Options {
   std::string source, target, output, overlay, screenshot, gt;
-  std::string center = "sensor"; // sensor, centroid or auto
+  std::string center = "auto"; // sensor, centroid or auto
   bool demo = false, icp = false, icp_point = false, json = false;
   int bandwidth = 0, grid = 0, passes = 0; // 0: the class default
   int threads = -1;                        // -1: the class default (the demo: 2)

@@ -11,8 +11,9 @@ shift || true
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${PCL_PHASER_BUILD_DIR:-$here/build}
 
+# pcl-tools: pcl_viewer, which the demo's last line suggests for its overlay.
 packages=(g++ make cmake pkg-config libpcl-dev libeigen3-dev libfftw3-dev libboost-dev
-          libgtest-dev nlohmann-json3-dev xvfb xauth)
+          libgtest-dev nlohmann-json3-dev xvfb xauth pcl-tools)
 if [[ $job == benchmark ]]; then packages+=(gnuplot-nox); fi
 # The batch tool's tests run it sharded under GNU parallel and a single-node Slurm.
 if [[ $job == test ]]; then packages+=(parallel slurm-wlm munge); fi
@@ -32,15 +33,19 @@ if ((${#missing[@]})); then
   apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-# The demo builds only pcl_phaser_align; test and benchmark build everything, the bench/
-# programs (PCL_PHASER_BUILD_BENCH) and their tests included.
+# The demo builds what `cmake --install` installs (the libraries, the tools and, when
+# pybind11 is present, the Python module) but no tests; test and benchmark build
+# everything, the bench/ programs and their tests included, and the Python module
+# (PCL_PHASER_BUILD_PYTHON=ON: a missing pybind11 is an error, not a silent skip).
 case "$job" in
-  demo) bench=OFF; target=(--target pcl_phaser_align) ;;
-  test|benchmark) bench=ON; target=() ;;
+  demo) options=(-DPCL_PHASER_BUILD_TESTS=OFF -DPCL_PHASER_BUILD_BENCH=OFF
+                 -DPCL_PHASER_BUILD_PYTHON=AUTO) ;;
+  test|benchmark) options=(-DPCL_PHASER_BUILD_TESTS=ON -DPCL_PHASER_BUILD_BENCH=ON)
+    if [[ $job == test ]]; then options+=(-DPCL_PHASER_BUILD_PYTHON=ON); fi ;;
   *) echo "usage: $0 demo|test|benchmark [ARGS]" >&2; exit 2 ;;
 esac
-cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPCL_PHASER_BUILD_BENCH=$bench
-cmake --build "$build" -j"$(nproc)" "${target[@]}"
+cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release "${options[@]}"
+cmake --build "$build" -j"$(nproc)"
 
 case "$job" in
   demo)

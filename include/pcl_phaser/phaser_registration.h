@@ -122,7 +122,8 @@ public:
     return static_cast<unsigned int>(params_.num_threads);
   }
 
-  /** \brief Set where both clouds are projected (default SensorOrigin).
+  /** \brief Set where the clouds are projected (default Automatic: about the sensor
+   *  origins for scans seen from them, else about the centroids).
    *  \param[in] center the projection center */
   void setProjectionCenter(ProjectionCenter center)
   {

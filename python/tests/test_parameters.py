@@ -27,7 +27,7 @@ def test_defaults_are_the_cpp_defaults():
     assert (p.rotation_candidates, p.orientation_candidates, p.fusion_levels) == (3, 10, 5)
     assert p.min_inlier_fraction == 0.2 and p.max_free_space_violation == 0.02
     assert p.normalized_refinement is True
-    assert p.projection_center == pcl_phaser.ProjectionCenter.SensorOrigin
+    assert p.projection_center == pcl_phaser.ProjectionCenter.Automatic
     assert p.channels == 0xFFFFFFFF
     assert repr(p) == "Parameters()"
 

@@ -5,8 +5,9 @@
  * RGB-D: two consecutive Kinect frames of ../shared/data/pcl (organized, with NaNs)
  * under synthetic large transforms, registered as PointXYZRGBA with color fused and
  * with color switched off. Both must succeed; color must change the estimate (the
- * channel really enters); both results are printed so the effect of color is on
- * record (doc/benchmarks.md): on these frames geometry alone is not ambiguous.
+ * channel really enters); both results are printed, so each run shows the effect of
+ * color (no table of doc/benchmarks.md holds it): on these frames geometry alone is
+ * not ambiguous.
  */
 #include "../registration/test_data.h"
 #include "cloud_reading.h"
@@ -61,8 +62,9 @@ TEST(RealRgbd, KinectFramesUnderLargePosesWithAndWithoutColor)
       phaser.setNumberOfThreads(2);
       phaser.setUseColor(use_color != 0);
       // Centroid: a 57 x 43 deg camera frame moved by T^-1 no longer has its camera at
-      // the origin, and the narrow cone turns that offset into strong parallax. About
-      // the sensor origin color fused 0/5 and range only 3/5 (doc/benchmarks.md).
+      // the origin, and the narrow cone turns that offset into strong parallax.
+      // ProjectionCenter::Automatic chooses the centroid for these frames too
+      // (doc/benchmarks.md, *Automatic projection center*).
       phaser.setProjectionCenter(decltype(phaser)::ProjectionCenter::Centroid);
       phaser.setInputSource(source);
       phaser.setInputTarget(target);

@@ -54,13 +54,14 @@ TEST(AutomaticCenter, SimulatedScanPairUsesTheSensorOriginAndTheCache)
   EXPECT_EQ(phaser.getResult().diagnostics.times.target, 0.0);
   EXPECT_EQ(phaser.getFinalTransformation(), first);
 
-  // The target scan itself, yawed by 90 deg and moved 100 m from its origin: it no
-  // longer surrounds its origin, so both clouds are projected about their centroids
-  // (the same points: the centroids correspond) and the target is prepared again.
+  // The target scan itself, yawed by 90 deg and moved 1 km from its origin (several
+  // times its extent): no longer seen from its origin, so both clouds are projected
+  // about their centroids (the same points: the centroids correspond) and the target
+  // is prepared again.
   Eigen::Matrix4d away = Eigen::Matrix4d::Identity();
   away.topLeftCorner<3, 3>() =
       Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).matrix();
-  away(0, 3) = 100.0;
+  away(0, 3) = 1000.0;
   const auto far = pcl::make_shared<Cloud>();
   pcl::transformPointCloud(*target, *far, away);
   phaser.setInputSource(far);
@@ -71,7 +72,7 @@ TEST(AutomaticCenter, SimulatedScanPairUsesTheSensorOriginAndTheCache)
   const Eigen::Matrix4d truth = away.inverse();
   const Eigen::Matrix4d estimate = phaser.getFinalTransformation().cast<double>();
   EXPECT_LT(rreDeg(estimate, truth), 2.0);
-  // The translation carries the 100 m lever arm of any rotation error: judge where the
+  // The translation carries the 1 km lever arm of any rotation error: judge where the
   // points land instead (mean displacement against the truth).
   double displacement = 0.0;
   for (const PointT& p : *far) {

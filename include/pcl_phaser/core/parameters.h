@@ -14,8 +14,10 @@ namespace pcl::phaser {
 enum class ProjectionCenter {
   SensorOrigin, ///< each cloud's frame origin (LiDAR scans in their sensor frame)
   Centroid,     ///< each cloud's centroid (object scans, clouds far from their origin)
-  /** SensorOrigin when both clouds look like spinning-LiDAR scans about their origin,
-   *  else Centroid (see PhaserResult::projection_center). */
+  /** The default: SensorOrigin when the source looks like a scan seen from its frame
+   *  origin (its nearest point within a tenth of its extent of it) and so does the
+   *  target or the target's origin is off its data (a map in a site frame), else
+   *  Centroid (see PhaserResult::projection_center). */
   Automatic
 };
 
@@ -41,7 +43,7 @@ struct PhaserParameters {
   int orientation_candidates = 10;
   int orientation_bandwidth = 32;
   double whitening = 0.5; ///< exponent of the cross-power whitening
-  ProjectionCenter projection_center = ProjectionCenter::SensorOrigin;
+  ProjectionCenter projection_center = ProjectionCenter::Automatic;
   /** \brief The pcl::phaser::Channel flags pcl::PhaserRegistration may fuse; the
    *  engine fuses whatever ChannelValues it is given. */
   std::uint32_t channels = ~0u;
