@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <unistd.h>
 
@@ -67,6 +68,7 @@ std::string mergeGraphs(const std::string& out, const std::vector<std::string>& 
 {
   std::map<int, std::string> vertices;
   std::map<std::pair<int, int>, std::string> edges;
+  std::set<int> fixed;
   for (const std::string& part : parts) {
     std::ifstream in(part);
     if (!in)
@@ -85,16 +87,22 @@ std::string mergeGraphs(const std::string& out, const std::vector<std::string>& 
         if (!fresh && it->second != line)
           return at + ": vertex " + std::to_string(a) + " differs from another part's";
       } else if (tag == "EDGE_SE3:QUAT" && fields >> a >> b) {
-        if (!edges.emplace(std::make_pair(a, b), line).second)
+        // Odometry edges come with every part, the same; loop edges with one.
+        const auto [it, fresh] = edges.emplace(std::make_pair(a, b), line);
+        if (!fresh && it->second != line)
           return at + ": edge " + std::to_string(a) + " " + std::to_string(b) +
-                 " is present twice";
+                 " differs from another part's";
+      } else if (tag == "FIX" && fields >> a) {
+        fixed.insert(a);
       } else
-        return at + ": not a VERTEX_SE3:QUAT or EDGE_SE3:QUAT line";
+        return at + ": not a VERTEX_SE3:QUAT, FIX or EDGE_SE3:QUAT line";
     }
   }
   std::string text;
   for (const auto& [id, line] : vertices)
     text += line + "\n";
+  for (const int id : fixed)
+    text += "FIX " + std::to_string(id) + "\n";
   for (const auto& [ids, line] : edges)
     text += line + "\n";
   return writeFileAtomically(out, text);

@@ -309,13 +309,40 @@ std::string writeFileAtomically(const std::string& path, const std::string& text
   return {};
 }
 
+std::string g2oOdometryEdge(int i, const Eigen::Matrix4d& from,
+                            const Eigen::Matrix4d& to, const OdometrySigma& sigma)
+{
+  const Eigen::Matrix4d T = from.inverse() * to;
+  const double rotation = sigma.rotation_deg * M_PI / 180.0;
+  Eigen::Matrix<double, 6, 1> diagonal;
+  diagonal << Eigen::Vector3d::Constant(1.0 / (sigma.translation * sigma.translation)),
+      Eigen::Vector3d::Constant(4.0 / (rotation * rotation));
+  std::string line = "EDGE_SE3:QUAT " + std::to_string(i) + " " +
+                     std::to_string(i + 1) + " " + positionText(T) + " " +
+                     quaternionText(T.topLeftCorner<3, 3>());
+  char buffer[32];
+  for (int r = 0; r < 6; ++r)
+    for (int c = r; c < 6; ++c) {
+      std::snprintf(buffer, sizeof(buffer), " %.17g", r == c ? diagonal[r] : 0.0);
+      line += buffer;
+    }
+  return line;
+}
+
 std::string g2oGraph(const std::vector<Record>& records,
-                     const std::vector<Eigen::Matrix4d>& poses)
+                     const std::vector<Eigen::Matrix4d>& poses,
+                     const std::optional<OdometrySigma>& odometry)
 {
   std::string out;
   for (std::size_t id = 0; id < poses.size(); ++id)
     out += g2oVertex(static_cast<int>(id), poses[id]) + "\n";
   std::map<std::pair<int, int>, std::string> edges;
+  if (odometry && !poses.empty()) {
+    out += "FIX 0\n";
+    for (std::size_t i = 0; i + 1 < poses.size(); ++i)
+      edges[{static_cast<int>(i), static_cast<int>(i + 1)}] =
+          g2oOdometryEdge(static_cast<int>(i), poses[i], poses[i + 1], *odometry);
+  }
   for (const Record& r : records)
     if (std::string edge = g2oEdge(r); !edge.empty())
       edges[{r["target_id"].get<int>(), r["source_id"].get<int>()}] = std::move(edge);

@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -81,10 +82,25 @@ std::string g2oVertex(int id, const Eigen::Matrix4d& pose);
  *  \return the reason on failure, else empty */
 std::string writeFileAtomically(const std::string& path, const std::string& text);
 
+/** \brief Standard deviations of one odometry edge (between consecutive scans). */
+struct OdometrySigma {
+  double translation = 0.05; ///< meters, per axis
+  double rotation_deg = 0.5; ///< degrees, about each axis
+};
+
+/** \brief `EDGE_SE3:QUAT i i+1` measuring T_world_i^-1 T_world_i+1 (\a from, \a to)
+ *  with the information of \a sigma in g2o's error (translation, quaternion x y z =
+ *  half the rotation vector): diag(1 / s_t^2, 4 / s_r^2). */
+std::string g2oOdometryEdge(int i, const Eigen::Matrix4d& from,
+                            const Eigen::Matrix4d& to, const OdometrySigma& sigma);
+
 /** \brief The g2o graph of \a records (edges of converged pairs, sorted by target and
- *  source id) with a vertex per pose of \a poses. */
+ *  source id) with a vertex per pose of \a poses; with \a odometry also `FIX 0` and an
+ *  odometry edge between consecutive poses (a loop edge of the same pair replaces it),
+ *  a complete pose graph. */
 std::string g2oGraph(const std::vector<Record>& records,
-                     const std::vector<Eigen::Matrix4d>& poses);
+                     const std::vector<Eigen::Matrix4d>& poses,
+                     const std::optional<OdometrySigma>& odometry = std::nullopt);
 
 /** \brief Join shard outputs into \a out: JSONL parts (sorted by pair index; every
  *  index of the list exactly once) or g2o parts (vertices agreeing, each edge once),

@@ -231,7 +231,7 @@ int writeGraph(const RunSettings& settings, const PairList& list)
   std::vector<Record> records;
   std::string error = readRecords(settings.out, records, false);
   if (error.empty())
-    error = writeFileAtomically(settings.g2o, g2oGraph(records, list.poses));
+    error = writeFileAtomically(settings.g2o, g2oGraph(records, list.poses, settings.odometry));
   return error.empty() ? kOk : failWith(kOutput, error);
 }
 

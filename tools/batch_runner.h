@@ -9,9 +9,11 @@
 #pragma once
 
 #include "batch_pairs.h"
+#include "batch_records.h"
 
 #include <pcl_phaser/core/pipeline.h>
 
+#include <optional>
 #include <string>
 
 namespace pcl {
@@ -41,6 +43,8 @@ struct RunSettings {
    *  split between the jobs. */
   int jobs = 1;
   PhaserParameters params; ///< the registration settings
+  /** \brief With poses: odometry edges and `FIX 0` in the g2o graph; empty: none. */
+  std::optional<OdometrySigma> odometry;
 };
 
 /** \brief Align the pairs of shard RunSettings::shard of \a list, skipping those

@@ -63,6 +63,12 @@ void printHelp(const char* name)
       "j = source) with\n"
       "                        their information; with --poses the VERTEX_SE3:QUAT "
       "lines too\n"
+      "    --odometry        = with --scans/--poses: also FIX 0 and an EDGE_SE3:QUAT "
+      "between consecutive\n"
+      "                        scans from the poses, a complete pose graph "
+      "(pcl_phaser_optimize)\n"
+      "    --odometry-sigma T,R = an odometry edge's standard deviations, meters and "
+      "degrees (default 0.05,0.5)\n"
       "    --shard K/N       = the K-th of N disjoint parts, K = 0..N-1 (default: "
       "SLURM_ARRAY_TASK_ID /\n"
       "                        SLURM_ARRAY_TASK_COUNT when set, else 0/1)\n"
@@ -95,13 +101,17 @@ using Given = std::map<std::string, std::string>;
 int collect(int argc, char** argv, Given& given)
 {
   static const std::map<std::string, bool> takes_value = {
-      {"--pairs", true},  {"--scans", true},     {"--poses", true},
-      {"--radius", true}, {"--min-gap", true},   {"--print-pairs", false},
-      {"--out", true},    {"--g2o", true},       {"--shard", true},
-      {"--cache", true},  {"--jobs", true},      {"--threads", true},
-      {"-b", true},       {"--bandwidth", true}, {"--grid", true},
-      {"--passes", true}, {"--center", true},    {"--max-tilt", true},
-      {"-h", false},      {"--help", false}};
+      {"--pairs", true},     {"--scans", true},
+      {"--poses", true},     {"--radius", true},
+      {"--min-gap", true},   {"--print-pairs", false},
+      {"--out", true},       {"--g2o", true},
+      {"--shard", true},     {"--cache", true},
+      {"--jobs", true},      {"--threads", true},
+      {"-b", true},          {"--bandwidth", true},
+      {"--grid", true},      {"--passes", true},
+      {"--center", true},    {"--max-tilt", true},
+      {"--odometry", false}, {"--odometry-sigma", true},
+      {"-h", false},         {"--help", false}};
   for (int i = 1; i < argc; ++i) {
     const auto spec = takes_value.find(argv[i]);
     if (spec == takes_value.end())
@@ -230,6 +240,32 @@ int candidates(const Given& given, batch::PairList& list)
   return batch::kOk;
 }
 
+/** \brief --odometry and --odometry-sigma T_M,R_DEG into \a odometry. */
+int odometrySettings(const Given& given, std::optional<batch::OdometrySigma>& odometry)
+{
+  if (given.count("--odometry-sigma") && !given.count("--odometry"))
+    return usage("--odometry-sigma needs --odometry");
+  if (!given.count("--odometry"))
+    return batch::kOk;
+  if (!given.count("--scans") || !given.count("--g2o"))
+    return usage("--odometry needs --scans, --poses and --g2o");
+  batch::OdometrySigma sigma;
+  if (given.count("--odometry-sigma")) {
+    const std::string& text = given.at("--odometry-sigma");
+    char* end = nullptr;
+    sigma.translation = std::strtod(text.c_str(), &end);
+    const bool comma = *end == ',';
+    sigma.rotation_deg = comma ? std::strtod(end + 1, &end) : 0.0;
+    if (!comma || *end != '\0' || !(sigma.translation > 0.0) ||
+        !(sigma.rotation_deg > 0.0) || !std::isfinite(sigma.translation) ||
+        !std::isfinite(sigma.rotation_deg))
+      return usage("Invalid --odometry-sigma '" + text +
+                   "': expected T_M,R_DEG, two numbers > 0");
+  }
+  odometry = sigma;
+  return batch::kOk;
+}
+
 int merge(int argc, char** argv)
 {
   if (argc < 4)
@@ -248,7 +284,8 @@ int run(const Given& given)
   settings.jobs = defaultJobs();
   for (const int rc :
        {engineSettings(given, settings.params, settings.cache, settings.jobs),
-        shardSettings(given, settings.shard, settings.shards)})
+        shardSettings(given, settings.shard, settings.shards),
+        odometrySettings(given, settings.odometry)})
     if (rc != batch::kOk)
       return rc;
   if (given.count("--pairs") == given.count("--scans"))

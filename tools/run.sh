@@ -15,8 +15,9 @@ build=${PCL_PHASER_BUILD_DIR:-$here/build}
 packages=(g++ make cmake pkg-config libpcl-dev libeigen3-dev libfftw3-dev libboost-dev
           libgtest-dev nlohmann-json3-dev xvfb xauth pcl-tools)
 if [[ $job == benchmark ]]; then packages+=(gnuplot-nox); fi
-# The batch tool's tests run it sharded under GNU parallel and a single-node Slurm.
-if [[ $job == test ]]; then packages+=(parallel slurm-wlm munge); fi
+# The batch tool's tests run it sharded under GNU parallel and a single-node Slurm;
+# libceres-dev builds pcl_phaser_optimize (the pose graph) and its tests.
+if [[ $job == test ]]; then packages+=(parallel slurm-wlm munge libceres-dev); fi
 # The Python module (built when pybind11 is found) and its pytest suite (label python).
 if [[ $job == test ]]; then
   packages+=(python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest

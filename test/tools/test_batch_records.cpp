@@ -21,6 +21,27 @@ using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 namespace {
 
+/** The fields of an EDGE_SE3:QUAT line: tag, ids, x y z qx qy qz qw, the information's
+ *  upper triangle. */
+struct EdgeFields {
+  std::string tag;
+  int i = -1, j = -1;
+  double v[7] = {};
+  std::vector<double> upper;
+};
+
+EdgeFields parseEdge(const std::string& line)
+{
+  EdgeFields e;
+  std::istringstream in(line);
+  in >> e.tag >> e.i >> e.j;
+  for (double& value : e.v)
+    in >> value;
+  for (double value; in >> value;)
+    e.upper.push_back(value);
+  return e;
+}
+
 std::string freshFolder()
 {
   char pattern[] = "/tmp/pcl_phaser_batch_test_XXXXXX";
@@ -96,13 +117,10 @@ TEST(BatchG2o, EdgeLineIsTargetSourceXyzThenQxQyQzQwThenUpperTriangle)
   T.topRightCorner<3, 1>() << 1.0, 2.0, 3.0;
   const std::string line =
       batch::g2oEdge(convergedRecord(0, 4, 7, T, 0.01 * Matrix6d::Identity()));
-  std::istringstream in(line);
-  std::string tag;
-  int i = -1, j = -1;
-  double v[7];
-  in >> tag >> i >> j;
-  for (double& value : v)
-    in >> value;
+  const EdgeFields e = parseEdge(line);
+  const std::string& tag = e.tag;
+  const int i = e.i, j = e.j;
+  const double* v = e.v;
   EXPECT_EQ(tag, "EDGE_SE3:QUAT");
   EXPECT_EQ(i, 4); // the target
   EXPECT_EQ(j, 7); // the source
@@ -111,13 +129,41 @@ TEST(BatchG2o, EdgeLineIsTargetSourceXyzThenQxQyQzQwThenUpperTriangle)
   EXPECT_NEAR(v[3], 0.0, 1e-15);
   EXPECT_NEAR(v[5], std::sqrt(0.5), 1e-15); // qz
   EXPECT_NEAR(v[6], std::sqrt(0.5), 1e-15); // qw last
-  std::vector<double> upper;
-  for (double value; in >> value;)
-    upper.push_back(value);
+  const std::vector<double>& upper = e.upper;
   ASSERT_EQ(upper.size(), 21u);
   EXPECT_NEAR(upper[0], 100.0, 1e-9);  // (x, x): 1 / 0.01
   EXPECT_NEAR(upper[15], 400.0, 1e-9); // (qx, qx): 1 / (0.01 / 4)
   EXPECT_NEAR(upper[1], 0.0, 1e-9);
+}
+
+TEST(BatchG2o, OdometryEdgesFixTheFirstVertexAndMeasureConsecutivePoses)
+{
+  std::vector<Eigen::Matrix4d> poses(3, Eigen::Matrix4d::Identity());
+  poses[1].topLeftCorner<3, 3>() =
+      Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).matrix();
+  poses[1].topRightCorner<3, 1>() << 1.0, 0.0, 0.0;
+  poses[2] = poses[1];
+  poses[2].topRightCorner<3, 1>() << 1.0, 2.0, 0.0; // 2 m along vertex 1's x
+  const std::string graph = batch::g2oGraph({}, poses, batch::OdometrySigma{0.1, 2.0});
+  EXPECT_NE(graph.find("FIX 0\n"), std::string::npos);
+  const std::string edge = batch::g2oOdometryEdge(1, poses[1], poses[2], {0.1, 2.0});
+  EXPECT_NE(graph.find(edge + "\n"), std::string::npos);
+  const EdgeFields e = parseEdge(edge);
+  const int i = e.i, j = e.j;
+  const double* v = e.v;
+  EXPECT_EQ(i, 1);
+  EXPECT_EQ(j, 2);
+  EXPECT_NEAR(v[0], 2.0, 1e-12); // T_1^-1 T_2: 2 m along x of vertex 1
+  EXPECT_NEAR(v[1], 0.0, 1e-12);
+  EXPECT_NEAR(v[6], 1.0, 1e-12); // no rotation: qw = 1
+  const std::vector<double>& upper = e.upper;
+  ASSERT_EQ(upper.size(), 21u);
+  EXPECT_NEAR(upper[0], 100.0, 1e-9); // 1 / 0.1^2
+  const double r = 2.0 * M_PI / 180.0;
+  EXPECT_NEAR(upper[15], 4.0 / (r * r), 1e-6); // g2o's qx is half the angle
+  EXPECT_EQ(upper[1], 0.0);
+  // Without odometry: no FIX and no edges of its own.
+  EXPECT_EQ(batch::g2oGraph({}, poses).find("FIX"), std::string::npos);
 }
 
 TEST(BatchG2o, NoEdgeForPairsThatDidNotConvergeOrFailed)
@@ -193,9 +239,19 @@ TEST(BatchMerge, JoinsPartsInPairOrderAndRefusesGapsAndRepeats)
   EXPECT_EQ(readText(folder + "/all.g2o"),
             "VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\n"
             "EDGE_SE3:QUAT 0 1 x\nEDGE_SE3:QUAT 0 2 y\n");
+  // The same line in two parts (odometry edges, FIX) is kept once; an edge that
+  // differs between parts is refused.
+  std::ofstream(folder + "/c.g2o") << "VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nFIX 0\n"
+                                      "EDGE_SE3:QUAT 0 1 x\n";
+  ASSERT_EQ(
+      batch::mergeParts(folder + "/all.g2o", {folder + "/a.g2o", folder + "/c.g2o"}),
+      "");
+  EXPECT_EQ(readText(folder + "/all.g2o"),
+            "VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nFIX 0\nEDGE_SE3:QUAT 0 1 x\n");
+  std::ofstream(folder + "/d.g2o") << "EDGE_SE3:QUAT 0 1 z\n";
   EXPECT_NE(
-      batch::mergeParts(folder + "/all.g2o", {folder + "/a.g2o", folder + "/a.g2o"})
-          .find("twice"),
+      batch::mergeParts(folder + "/all.g2o", {folder + "/a.g2o", folder + "/d.g2o"})
+          .find("differs"),
       std::string::npos);
   EXPECT_NE(batch::mergeParts(out, {folder + "/a.g2o"}).find("not of the kind"),
             std::string::npos);

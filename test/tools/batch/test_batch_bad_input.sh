@@ -31,6 +31,13 @@ printf '1 0 0 0 0 1 0 0 0 0 1 0\n' > "$work/poses.txt"
 expect 2 "holds 1 poses for the 2 scans" --scans "$work/scans.txt" --poses "$work/poses.txt" --radius 20 --min-gap 1 --print-pairs
 expect 1 "--scans needs --radius" --scans "$work/scans.txt" --poses "$work/poses.txt" --min-gap 1 --print-pairs
 expect 2 "cannot read" merge "$work/m.jsonl" "$work/none.jsonl"
+expect 1 "--odometry needs --scans" --pairs "$work/pairs.txt" --out "$o" --odometry
+expect 1 "--odometry-sigma needs --odometry" --pairs "$work/pairs.txt" --out "$o" --odometry-sigma 1,1
+printf '1 0 0 0 0 1 0 0 0 0 1 0\n1 0 0 1 0 1 0 0 0 0 1 0\n' > "$work/poses2.txt"
+expect 1 "Invalid --odometry-sigma '0.1'" --scans "$work/scans.txt" --poses "$work/poses2.txt" --radius 20 --min-gap 1 --out "$o" --g2o "$work/g.g2o" --odometry --odometry-sigma 0.1
+expect 1 "Invalid --odometry-sigma '0,1'" --scans "$work/scans.txt" --poses "$work/poses2.txt" --radius 20 --min-gap 1 --out "$o" --g2o "$work/g.g2o" --odometry --odometry-sigma 0,1
+printf '1 0 0 0 0 1 0 0 0 0 1\n' > "$work/poses1.txt"
+expect 2 "line 1" --scans "$work/scans.txt" --poses "$work/poses1.txt" --radius 20 --min-gap 1 --out "$o" --g2o "$work/g.g2o" --odometry
 
 # A missing and an unreadable cloud: recorded as failed with the reason, the rest aligned.
 printf 'scans/full18.pcd scans/full36.pcd\nmissing.pcd scans/full36.pcd\nbad.txt scans/full36.pcd\n' > "$work/some.txt"
