@@ -62,7 +62,18 @@ std::string runFingerprint(const RunSettings& settings)
                 "shard %d/%d, B %d, grid %d, voxel %.17g, passes %d, %s",
                 settings.shard, settings.shards, p.bandwidth, p.spatial_grid_size,
                 p.voxel_size, p.passes, centers[static_cast<int>(p.projection_center)]);
-  return text;
+  std::string fingerprint = text;
+  // The priors, only when set (records written without them keep their fingerprint).
+  if (p.region_radius > 0.0) {
+    std::snprintf(text, sizeof(text), ", region %.17g,%.17g,%.17g,%.17g", p.region_x,
+                  p.region_y, p.region_z, p.region_radius);
+    fingerprint += text;
+  }
+  if (p.max_tilt_deg > 0.0) {
+    std::snprintf(text, sizeof(text), ", tilt %.17g", p.max_tilt_deg);
+    fingerprint += text;
+  }
+  return fingerprint;
 }
 
 /** \brief The pairs of the shard not yet in \a records; an error when a record is not
@@ -231,7 +242,8 @@ int writeGraph(const RunSettings& settings, const PairList& list)
   std::vector<Record> records;
   std::string error = readRecords(settings.out, records, false);
   if (error.empty())
-    error = writeFileAtomically(settings.g2o, g2oGraph(records, list.poses, settings.odometry));
+    error = writeFileAtomically(settings.g2o,
+                                g2oGraph(records, list.poses, settings.odometry));
   return error.empty() ? kOk : failWith(kOutput, error);
 }
 

@@ -15,7 +15,8 @@
 // runaway allocations through: a guard has to know every trigger and follow every PCL
 // release, as the 1,980 lines of header parsing it replaces did. The child turns any
 // crash, abort, runaway allocation or hang into a clean error, whatever the trigger,
-// for one fork and one copy of the cloud through a pipe per file (doc/benchmarks.md, *Reading cloud files*).
+// for one fork and one copy of the cloud through a pipe per file (doc/benchmarks.md,
+// *Reading cloud files*).
 #include "cloud_reading.h"
 
 #include <pcl/common/io.h>

@@ -10,6 +10,7 @@
 
 #include "cloud_reading.h"
 #include "pcl_phaser_align_screenshot.h"
+#include "region_option.h"
 
 #include <pcl_phaser/core/parameters.h>
 
@@ -233,28 +234,14 @@ inline std::string parameterTable()
   return (out);
 }
 
-/** \brief Parse --region X,Y,Z,R into \a opt.region: finite, R > 0, each in the range
- *  of its PhaserParameters field. \return kOk or kUsage (after fail()) */
+/** \brief Parse --region X,Y,Z,R into \a opt.region (parseRegion).
+ *  \return kOk or kUsage (after fail()) */
 inline int parseRegion(const std::string& text, Options& opt)
 {
-  static const char* const fields[4] = {"region_x", "region_y", "region_z",
-                                        "region_radius"};
-  const char* p = text.c_str();
-  for (int k = 0; k < 4; ++k) {
-    char* end = nullptr;
-    opt.region[k] = std::strtod(p, &end);
-    const pcl::phaser::ParameterRange* range =
-        pcl::phaser::findParameterRange(fields[k]);
-    const bool last = k == 3;
-    if (end == p || *end != (last ? '\0' : ',') || !std::isfinite(opt.region[k]) ||
-        opt.region[k] < range->min || opt.region[k] > range->max ||
-        (last && !(opt.region[k] > 0.0)))
-      return (fail(kUsage,
-                   "Invalid --region '%s': expected X,Y,Z,R in meters in the target's "
-                   "frame, coordinates within 1e6 m and 0 < R <= %g.",
-                   text.c_str(), pcl::phaser::findParameterRange(fields[3])->max));
-    p = end + 1;
-  }
+  const auto region = pcl::phaser::parseRegion(text);
+  if (!region)
+    return (fail(kUsage, "%s.", pcl::phaser::regionUsage(text).c_str()));
+  std::copy(region->begin(), region->end(), opt.region);
   return (kOk);
 }
 

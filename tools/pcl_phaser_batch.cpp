@@ -10,6 +10,7 @@
 #include "batch_pairs.h"
 #include "batch_records.h"
 #include "batch_runner.h"
+#include "region_option.h"
 
 #include <pcl/console/print.h>
 
@@ -78,8 +79,12 @@ void printHelp(const char* name)
       "hardware "
       "threads split between the jobs)\n"
       "    --cache N         = prepared targets kept per job, 1..4096 (default: 4)\n"
-      "    -b B, --grid N, --passes K, --center sensor|centroid|auto, --max-tilt DEG "
-      "= as in pcl_phaser_align\n"
+      "    -b B, --grid N, --passes K, --center sensor|centroid|auto, --max-tilt DEG, "
+      "--region X,Y,Z,R\n"
+      "                      = as in pcl_phaser_align (--region: every source's sensor "
+      "within R m of X,Y,Z\n"
+      "                        of its target's frame: relocalization queries against "
+      "one map)\n"
       "  merge OUT PARTS... joins shard outputs: .jsonl parts into OUT.jsonl (every "
       "pair exactly once),\n"
       "  .g2o parts into OUT.g2o. Exit codes: 0 done (failed pairs are recorded with "
@@ -111,7 +116,8 @@ int collect(int argc, char** argv, Given& given)
       {"--grid", true},      {"--passes", true},
       {"--center", true},    {"--max-tilt", true},
       {"--odometry", false}, {"--odometry-sigma", true},
-      {"-h", false},         {"--help", false}};
+      {"--region", true},    {"-h", false},
+      {"--help", false}};
   for (int i = 1; i < argc; ++i) {
     const auto spec = takes_value.find(argv[i]);
     if (spec == takes_value.end())
@@ -167,6 +173,19 @@ int maxTilt(const Given& given, pcl::phaser::PhaserParameters& p)
   return batch::kOk;
 }
 
+/** \brief --region X,Y,Z,R: the position prior of every pair. */
+int region(const Given& given, pcl::phaser::PhaserParameters& p)
+{
+  const auto it = given.find("--region");
+  if (it == given.end())
+    return batch::kOk;
+  const auto r = pcl::phaser::parseRegion(it->second);
+  if (!r)
+    return usage(pcl::phaser::regionUsage(it->second));
+  pcl::phaser::setRegion(p, *r);
+  return batch::kOk;
+}
+
 int engineSettings(const Given& given, pcl::phaser::PhaserParameters& p, int& cache,
                    int& jobs)
 {
@@ -189,6 +208,8 @@ int engineSettings(const Given& given, pcl::phaser::PhaserParameters& p, int& ca
                    "': expected sensor, centroid or auto");
     p.projection_center = centers.at(center->second);
   }
+  if (const int rc = region(given, p); rc != batch::kOk)
+    return rc;
   return maxTilt(given, p);
 }
 

@@ -1,0 +1,79 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ *
+ * pcl_phaser_map: a prior map from scans and their poses (the --scans / --poses lists
+ * of pcl_phaser_batch), thinned to one point per voxel, for relocalization queries
+ * (pcl_phaser_align --region, pcl_phaser_batch --region).
+ */
+#include "batch_pairs.h"
+#include "cloud_reading.h"
+#include "map_builder.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace {
+
+constexpr int kUsage = 1, kInput = 2, kOutput = 3;
+
+int usage(const char* name)
+{
+  std::fprintf(
+      stderr,
+      "Syntax: %s SCANS POSES OUT.pcd [--voxel V]\n"
+      "  SCANS: one scan path per line (relative to its folder); POSES: one "
+      "row-major 3x4\n"
+      "  T_world_scan per scan (the last 12 numbers of a line). Writes the "
+      "scans moved into the\n"
+      "  world frame as one binary PCD (x y z intensity), one point (the mean) "
+      "per V m cube\n"
+      "  (default 0.1; 0: every point). Exit codes: 0 done, 1 usage, 2 "
+      "unreadable input, 3 output.\n",
+      name);
+  return kUsage;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  if (argc != 4 && argc != 6)
+    return usage(argv[0]);
+  double voxel = 0.1;
+  if (argc == 6) {
+    char* end = nullptr;
+    voxel = std::strtod(argv[5], &end);
+    if (std::string(argv[4]) != "--voxel" || *end != '\0' || !(voxel >= 0.0) ||
+        !std::isfinite(voxel))
+      return usage(argv[0]);
+  }
+  std::vector<std::string> names, paths;
+  std::vector<Eigen::Matrix4d> poses;
+  std::string error = pcl::phaser::batch::readScanList(argv[1], names, paths);
+  if (error.empty())
+    error = pcl::phaser::batch::readPoses(argv[2], poses);
+  if (error.empty() && poses.size() != paths.size())
+    error = "'" + std::string(argv[2]) + "' holds " + std::to_string(poses.size()) +
+            " poses for " + std::to_string(paths.size()) + " scans";
+  if (!error.empty())
+    return std::fprintf(stderr, "Error: %s\n", error.c_str()), kInput;
+  pcl::phaser::MapBuilder map(voxel);
+  std::size_t read = 0;
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    pcl::PointCloud<pcl::PointXYZI> scan;
+    if (!pcl::phaser::loadCloud(paths[i], scan, &error))
+      return std::fprintf(stderr, "Error: %s\n", error.c_str()), kInput;
+    read += scan.size();
+    map.add(scan, poses[i]);
+  }
+  const auto cloud = map.cloud();
+  if (!pcl::phaser::saveCloud(argv[3], *cloud, &error))
+    return std::fprintf(stderr, "Error: %s\n", error.c_str()), kOutput;
+  std::printf("%zu scans, %zu points -> %zu map points (voxel %g m): %s\n",
+              paths.size(), read, cloud->size(), voxel, argv[3]);
+  return 0;
+}
