@@ -263,13 +263,19 @@ g2oInformation(const Eigen::Matrix4d& T, const Eigen::Matrix<double, 6, 6>& cova
          eig.eigenvectors().transpose();
 }
 
+bool convergedEdge(const Record& record, Eigen::Matrix4d& T,
+                   Eigen::Matrix<double, 6, 6>& covariance)
+{
+  return record.value("status", "") == "ok" && record.value("converged", false) &&
+         matrixOf<4, 4>(record["transformation"], T) &&
+         matrixOf<6, 6>(record["covariance"], covariance);
+}
+
 std::string g2oEdge(const Record& record)
 {
   Eigen::Matrix4d T;
   Eigen::Matrix<double, 6, 6> covariance;
-  if (record.value("status", "") != "ok" || !record.value("converged", false) ||
-      !matrixOf<4, 4>(record["transformation"], T) ||
-      !matrixOf<6, 6>(record["covariance"], covariance))
+  if (!convergedEdge(record, T, covariance))
     return {};
   const Eigen::Matrix<double, 6, 6> info = g2oInformation(T, covariance);
   if (info.isZero(0.0))

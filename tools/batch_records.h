@@ -71,6 +71,11 @@ private:
 Eigen::Matrix<double, 6, 6>
 g2oInformation(const Eigen::Matrix4d& T, const Eigen::Matrix<double, 6, 6>& covariance);
 
+/** \brief The measurement \a T (T_target_source) and \a covariance of a converged
+ *  record. \return false for any other record */
+bool convergedEdge(const Record& record, Eigen::Matrix4d& T,
+                   Eigen::Matrix<double, 6, 6>& covariance);
+
 /** \brief `EDGE_SE3:QUAT i j x y z qx qy qz qw` and the 21 upper-triangular entries of
  *  the information, for a converged record; empty for any other. */
 std::string g2oEdge(const Record& record);

@@ -10,6 +10,7 @@
 #include "batch_pairs.h"
 #include "batch_records.h"
 #include "batch_runner.h"
+#include "loop_triangles.h"
 #include "region_option.h"
 
 #include <pcl/console/print.h>
@@ -47,6 +48,7 @@ void printHelp(const char* name)
       "        %s --scans LIST --poses POSES --radius R --min-gap K "
       "(--out RESULTS.jsonl | --print-pairs) [options]\n"
       "        %s merge OUT PARTS...\n"
+      "        %s triangles RESULTS.jsonl\n"
       "  Registers every pair with PHASER, each target prepared once, and appends one "
       "JSON record\n  per pair to RESULTS.jsonl as it finishes; rerunning the same "
       "command resumes.\n"
@@ -87,11 +89,15 @@ void printHelp(const char* name)
       "one map)\n"
       "  merge OUT PARTS... joins shard outputs: .jsonl parts into OUT.jsonl (every "
       "pair exactly once),\n"
-      "  .g2o parts into OUT.g2o. Exit codes: 0 done (failed pairs are recorded with "
+      "  .g2o parts into OUT.g2o. triangles: around every triangle of converged "
+      "edges, the closure's NEES\n"
+      "  under the propagated covariances (a check of them that needs no reference "
+      "poses).\n"
+      "  Exit codes: 0 done (failed pairs are recorded with "
       "their reason),\n"
       "  1 usage, 2 unreadable input list, 3 output not writable, 130 stopped by "
       "SIGINT/SIGTERM (resume).\n",
-      name, name, name, defaultJobs(), int(threads.min), int(threads.max));
+      name, name, name, name, defaultJobs(), int(threads.min), int(threads.max));
 }
 
 int usage(const std::string& reason)
@@ -329,10 +335,25 @@ int run(const Given& given)
 
 } // namespace
 
+/** \brief `triangles RESULTS.jsonl`: the reference-free covariance check. */
+int triangles(int argc, char** argv)
+{
+  if (argc != 3)
+    return usage("triangles needs one RESULTS.jsonl");
+  std::vector<batch::Record> records;
+  if (const std::string error = batch::readRecords(argv[2], records, false);
+      !error.empty())
+    return print_error("triangles: %s\n", error.c_str()), batch::kInput;
+  std::printf("%s\n", batch::closureSummary(batch::loopClosures(records)).c_str());
+  return batch::kOk;
+}
+
 int main(int argc, char** argv)
 {
   if (argc >= 2 && std::string(argv[1]) == "merge")
     return merge(argc, argv);
+  if (argc >= 2 && std::string(argv[1]) == "triangles")
+    return triangles(argc, argv);
   Given given;
   if (const int rc = collect(argc, argv, given); rc != batch::kOk)
     return rc;

@@ -10,6 +10,7 @@
 #include "../registration/test_data.h"
 #include "batch_pairs.h"
 #include "batch_records.h"
+#include "loop_triangles.h"
 #include "pose_graph.h"
 
 #include <Eigen/Geometry>
@@ -240,6 +241,45 @@ TEST(LoopClosures, DriftedHandheldTrajectoryIsCorrected)
   char signature[8] = {};
   png.read(signature, 8);
   EXPECT_EQ(std::string(signature, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  std::filesystem::remove_all(folder);
+}
+
+// The reference-free check of the loop edges' covariances on the shared handheld
+// sequence: every candidate within 12 m and 4 scans apart (by the dataset's poses), and
+// every triangle of converged edges: the closures' NEES follows chi-square(6) closely
+// enough (within the 95 % bound for 90-99.5 % of them, mean 2-8).
+TEST(LoopClosures, TrianglesCloseWithinTheirCovariances)
+{
+  PCL_PHASER_REQUIRE_DATA("lidar/balm_handheld/poses_T_world_lidar.txt");
+  const std::string folder_in = pcl::phaser::test::dataPath("lidar/balm_handheld");
+  const std::string folder = freshFolder();
+  {
+    std::ofstream scans(folder + "/scans.txt");
+    for (int i = 0; i < 30; ++i)
+      scans << folder_in << "/full" << 6 * i << ".pcd\n";
+  }
+  const std::string run = std::string(PCL_PHASER_BATCH_BIN) + " --scans " + folder +
+                          "/scans.txt --poses " + folder_in +
+                          "/poses_T_world_lidar.txt --radius 12 --min-gap 4 --out " +
+                          folder + "/loops.jsonl 2> " + folder + "/batch.log";
+  ASSERT_EQ(std::system(run.c_str()), 0) << run;
+  std::vector<batch::Record> records;
+  ASSERT_EQ(batch::readRecords(folder + "/loops.jsonl", records, false), "");
+  const std::vector<batch::Closure> closures = batch::loopClosures(records);
+  std::printf("  %zu edges: %s\n", records.size(),
+              batch::closureSummary(closures).c_str());
+  ASSERT_GE(closures.size(), 200u);
+  double sum = 0.0;
+  std::size_t within = 0;
+  for (const batch::Closure& c : closures) {
+    sum += c.nees;
+    within += c.nees <= batch::kChiSquare6Bound95;
+  }
+  const double n = static_cast<double>(closures.size());
+  EXPECT_GE(within / n, 0.90) << "the covariances are overconfident";
+  EXPECT_LE(within / n, 0.995) << "the covariances are too wide";
+  EXPECT_GE(sum / n, 2.0);
+  EXPECT_LE(sum / n, 8.0);
   std::filesystem::remove_all(folder);
 }
 
