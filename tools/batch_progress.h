@@ -30,7 +30,8 @@ public:
   Progress(std::size_t total, std::size_t done, std::size_t accepted);
   /** \brief One more pair finished with \a record. */
   void finished(const Pair& pair, const Record& record);
-  /** \brief End the line drawn in place. */
+  /** \brief End the line drawn in place, then a summary of this run's pairs: wall
+   *  time and minor page faults (fresh memory pages the process touched) a pair. */
   void close();
   /** \brief Pairs recorded, resumed ones included. */
   std::size_t done() const { return done_; }
@@ -39,6 +40,7 @@ private:
   std::size_t total_, done_, accepted_, failed_ = 0, resumed_;
   bool terminal_;
   std::chrono::steady_clock::time_point start_;
+  long start_faults_ = 0; ///< minor page faults of the process at the start
 };
 
 } // namespace batch

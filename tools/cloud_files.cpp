@@ -59,6 +59,9 @@ std::string unsupportedExtension(const std::string& path)
 
 bool loadWithPcl(const std::string& path, CloudFormat format, std::uintmax_t file_size,
                  pcl::PCLPointCloud2& cloud, std::string* error);
+bool loadThroughReader(const std::string& path, CloudFormat format,
+                       std::uintmax_t file_size, pcl::PCLPointCloud2& cloud,
+                       std::string* error, bool& used);
 
 /** A readable, non-empty regular file, and its size. */
 bool checkInputFile(const std::string& path, std::uintmax_t& size, std::string* error)
@@ -257,8 +260,12 @@ bool loadCloud(const std::string& path, pcl::PCLPointCloud2& cloud, std::string*
     case CloudFormat::KITTI_BIN:
       return (loadKittiBin(path, size, cloud, error));
     case CloudFormat::PCD:
-    case CloudFormat::PLY:
-      return (loadWithPcl(path, getCloudFormat(path), size, cloud, error));
+    case CloudFormat::PLY: {
+      bool used = false;
+      const bool ok =
+          loadThroughReader(path, getCloudFormat(path), size, cloud, error, used);
+      return (used ? ok : loadWithPcl(path, getCloudFormat(path), size, cloud, error));
+    }
     case CloudFormat::UNKNOWN:
       break;
     }

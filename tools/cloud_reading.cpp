@@ -59,6 +59,14 @@ enum ChildExit : int {
   kChildPipeFailed = 14
 };
 
+template <typename T>
+void put(std::string& out, T value)
+{
+  out.append(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+
+} // namespace
+
 bool writeAll(int fd, const void* data, std::size_t size)
 {
   const char* p = static_cast<const char*>(data);
@@ -87,14 +95,7 @@ void readAll(int fd, std::string& out)
   }
 }
 
-template <typename T>
-void put(std::string& out, T value)
-{
-  out.append(reinterpret_cast<const char*>(&value), sizeof(T));
-}
-
-/** Send a cloud through the pipe: layout, fields, then the data bytes. */
-bool sendCloud(int fd, const pcl::PCLPointCloud2& cloud)
+std::string cloudBytes(const pcl::PCLPointCloud2& cloud)
 {
   std::string head;
   for (const std::uint32_t v : {cloud.width, cloud.height, cloud.point_step,
@@ -110,8 +111,17 @@ bool sendCloud(int fd, const pcl::PCLPointCloud2& cloud)
     put(head, f.count);
   }
   put(head, static_cast<std::uint64_t>(cloud.data.size()));
-  return (writeAll(fd, head.data(), head.size()) &&
-          writeAll(fd, cloud.data.data(), cloud.data.size()));
+  head.append(reinterpret_cast<const char*>(cloud.data.data()), cloud.data.size());
+  return (head);
+}
+
+namespace {
+
+/** Send a cloud through the pipe: layout, fields, then the data bytes. */
+bool sendCloud(int fd, const pcl::PCLPointCloud2& cloud)
+{
+  const std::string bytes = cloudBytes(cloud);
+  return (writeAll(fd, bytes.data(), bytes.size()));
 }
 
 /** Reads what sendCloud wrote, bounds-checked. */
@@ -142,6 +152,8 @@ private:
   std::size_t pos_ = 0;
 };
 
+} // namespace
+
 bool receiveCloud(const std::string& bytes, pcl::PCLPointCloud2& cloud)
 {
   Unpacker in(bytes);
@@ -169,6 +181,8 @@ bool receiveCloud(const std::string& bytes, pcl::PCLPointCloud2& cloud)
   cloud.data.resize(static_cast<std::size_t>(size));
   return (in.take(cloud.data.data(), cloud.data.size()) && in.atEnd());
 }
+
+namespace {
 
 /** PCL 1.13.0's PLYReader::read (ply_io.cpp) maps each range_grid cell to its vertex
  * with `(*range_grid_)[r][0] * cloud_->point_step`, an unsigned 32-bit product, and

@@ -10,6 +10,7 @@
 #include "batch_pairs.h"
 #include "batch_records.h"
 #include "batch_runner.h"
+#include "cloud_reader_process.h"
 #include "loop_triangles.h"
 #include "region_option.h"
 
@@ -354,6 +355,9 @@ int main(int argc, char** argv)
     return merge(argc, argv);
   if (argc >= 2 && std::string(argv[1]) == "triangles")
     return triangles(argc, argv);
+  // While this process is small: it reads every cloud from here on
+  // (cloud_reader_process.h).
+  pcl::phaser::startCloudReader();
   Given given;
   if (const int rc = collect(argc, argv, given); rc != batch::kOk)
     return rc;
