@@ -17,6 +17,8 @@
 // crash, abort, runaway allocation or hang into a clean error, whatever the trigger,
 // for one fork and one copy of the cloud through a pipe per file (doc/benchmarks.md,
 // *Reading cloud files*).
+// A long-running tool forks those children from a small reader process instead
+// (cloud_reader_process.h), so its own working memory is never copy-on-write.
 #include "cloud_reading.h"
 
 #include <pcl/common/io.h>
