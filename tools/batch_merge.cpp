@@ -67,7 +67,7 @@ std::string mergeRecords(const std::string& out, const std::vector<std::string>&
 std::string mergeGraphs(const std::string& out, const std::vector<std::string>& parts)
 {
   std::map<int, std::string> vertices;
-  std::map<std::pair<int, int>, std::string> edges;
+  std::map<std::pair<int, int>, std::set<std::string>> edges;
   std::set<int> fixed;
   for (const std::string& part : parts) {
     std::ifstream in(part);
@@ -87,11 +87,14 @@ std::string mergeGraphs(const std::string& out, const std::vector<std::string>& 
         if (!fresh && it->second != line)
           return at + ": vertex " + std::to_string(a) + " differs from another part's";
       } else if (tag == "EDGE_SE3:QUAT" && fields >> a >> b) {
-        // Odometry edges come with every part, the same; loop edges with one.
-        const auto [it, fresh] = edges.emplace(std::make_pair(a, b), line);
-        if (!fresh && it->second != line)
+        // Odometry edges come with every part, the same (kept once); a loop edge comes
+        // with the one part that holds its pair (beside the odometry edge of the pair
+        // with --min-gap 1). A third line for a pair means parts of different runs.
+        std::set<std::string>& lines = edges[{a, b}];
+        lines.insert(line);
+        if (lines.size() > 2)
           return at + ": edge " + std::to_string(a) + " " + std::to_string(b) +
-                 " differs from another part's";
+                 " differs between parts";
       } else if (tag == "FIX" && fields >> a) {
         fixed.insert(a);
       } else
@@ -103,8 +106,9 @@ std::string mergeGraphs(const std::string& out, const std::vector<std::string>& 
     text += line + "\n";
   for (const int id : fixed)
     text += "FIX " + std::to_string(id) + "\n";
-  for (const auto& [ids, line] : edges)
-    text += line + "\n";
+  for (const auto& [ids, lines] : edges)
+    for (const std::string& line : lines)
+      text += line + "\n";
   return writeFileAtomically(out, text);
 }
 

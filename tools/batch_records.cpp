@@ -13,6 +13,7 @@
 #include <fcntl.h>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -342,18 +343,22 @@ std::string g2oGraph(const std::vector<Record>& records,
   std::string out;
   for (std::size_t id = 0; id < poses.size(); ++id)
     out += g2oVertex(static_cast<int>(id), poses[id]) + "\n";
-  std::map<std::pair<int, int>, std::string> edges;
+  // By pair, then by text: an odometry edge and a loop edge of the same pair (--min-gap
+  // 1) are both kept, in the order a merge of shards gives them too.
+  std::map<std::pair<int, int>, std::set<std::string>> edges;
   if (odometry && !poses.empty()) {
     out += "FIX 0\n";
     for (std::size_t i = 0; i + 1 < poses.size(); ++i)
-      edges[{static_cast<int>(i), static_cast<int>(i + 1)}] =
-          g2oOdometryEdge(static_cast<int>(i), poses[i], poses[i + 1], *odometry);
+      edges[{static_cast<int>(i), static_cast<int>(i + 1)}].insert(
+          g2oOdometryEdge(static_cast<int>(i), poses[i], poses[i + 1], *odometry));
   }
   for (const Record& r : records)
     if (std::string edge = g2oEdge(r); !edge.empty())
-      edges[{r["target_id"].get<int>(), r["source_id"].get<int>()}] = std::move(edge);
-  for (const auto& [ids, edge] : edges)
-    out += edge + "\n";
+      edges[{r["target_id"].get<int>(), r["source_id"].get<int>()}].insert(
+          std::move(edge));
+  for (const auto& [ids, lines] : edges)
+    for (const std::string& line : lines)
+      out += line + "\n";
   return out;
 }
 

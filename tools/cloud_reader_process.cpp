@@ -15,6 +15,7 @@
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <mutex>
 #include <string>
 #include <sys/prctl.h>
@@ -106,15 +107,26 @@ bool readFramed(int fd, std::string& bytes)
   for (std::string path, format, size;
        readFramed(fd, path) && readFramed(fd, format) && readFramed(fd, size);) {
     pcl::PCLPointCloud2 cloud;
-    std::string error;
-    const bool ok =
-        format.size() == sizeof(int) && size.size() == sizeof(std::uintmax_t) &&
-        detail::loadWithPcl(
-            path,
-            static_cast<CloudFormat>(*reinterpret_cast<const int*>(format.data())),
-            *reinterpret_cast<const std::uintmax_t*>(size.data()), cloud, &error);
-    if (!sendAll(fd, framed(ok ? "1" : "0") + framed(error) +
-                         framed(ok ? detail::cloudBytes(cloud) : std::string())))
+    std::string error, bytes;
+    bool ok = false;
+    try {
+      int code = 0;
+      std::uintmax_t file_size = 0;
+      ok = format.size() == sizeof(code) && size.size() == sizeof(file_size);
+      if (ok) {
+        std::memcpy(&code, format.data(), sizeof(code));
+        std::memcpy(&file_size, size.data(), sizeof(file_size));
+        ok = detail::loadWithPcl(path, static_cast<CloudFormat>(code), file_size, cloud,
+                                 &error);
+      }
+      if (ok)
+        bytes = detail::cloudBytes(cloud);
+    } catch (const std::exception& e) {
+      ok = false;
+      error = "'" + path + "': the reader process: " + e.what();
+    }
+    if (!sendAll(fd, framed(ok ? "1" : "0") + framed(error)) ||
+        !sendAll(fd, framed(ok ? bytes : std::string())))
       break;
   }
   ::_exit(0);
@@ -170,14 +182,23 @@ bool loadThroughReader(const std::string& path, CloudFormat format,
     return false;
   const int code = static_cast<int>(format);
   std::string ok, reason, bytes;
-  if (!sendAll(r.fd, framed(path) +
-                         framed(std::string(reinterpret_cast<const char*>(&code),
-                                            sizeof(code))) +
-                         framed(std::string(reinterpret_cast<const char*>(&file_size),
-                                            sizeof(file_size)))) ||
-      !readFramed(r.fd, ok) || !readFramed(r.fd, reason) || !readFramed(r.fd, bytes)) {
+  bool answered = false;
+  try {
+    answered =
+        sendAll(r.fd, framed(path) +
+                          framed(std::string(reinterpret_cast<const char*>(&code),
+                                             sizeof(code))) +
+                          framed(std::string(reinterpret_cast<const char*>(&file_size),
+                                             sizeof(file_size)))) &&
+        readFramed(r.fd, ok) && readFramed(r.fd, reason) && readFramed(r.fd, bytes);
+  } catch (const std::exception&) { // a reply half read: the stream is lost
+    answered = false;
+  }
+  if (!answered) { // let it go: the caller reads the file itself from now on
     ::close(r.fd);
-    ::waitpid(r.pid, nullptr, WNOHANG);
+    ::kill(r.pid, SIGKILL);
+    while (::waitpid(r.pid, nullptr, 0) < 0 && errno == EINTR) {
+    }
     r.fd = -1;
     r.pid = -1;
     return false;

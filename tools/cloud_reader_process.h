@@ -18,7 +18,9 @@ namespace phaser {
  *  memory makes its later writes fault page by page (copy-on-write: about 22k faults
  *  and 10 % of the wall time per revisit pair in the batch); the reader forks from its
  *  own few megabytes instead. Without it, or if it dies, loadCloud() forks from the
- *  caller as before. Thread-safe; idempotent. \return false if it could not start */
+ *  caller as before. Call it from the main thread before any other thread starts (the
+ *  reader dies with the thread that forked it); idempotent. \return false if it could
+ *  not start */
 bool startCloudReader();
 
 /** \brief The reader process, or -1 when none runs (for tests). */

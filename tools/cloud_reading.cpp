@@ -35,6 +35,7 @@
 #include <functional>
 #include <new>
 #include <string>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <tuple>
@@ -181,6 +182,7 @@ bool receiveCloud(const std::string& bytes, pcl::PCLPointCloud2& cloud)
   if (!in.get(size) || size > bytes.size())
     return (false);
   cloud.data.resize(static_cast<std::size_t>(size));
+  cloud.row_step = cloud.width * cloud.point_step; // the layout every loaded cloud has
   return (in.take(cloud.data.data(), cloud.data.size()) && in.atEnd());
 }
 
@@ -290,6 +292,7 @@ void limitChild(std::uintmax_t file_size)
 [[noreturn]] void runChild(const std::string& path, CloudFormat format,
                            std::uintmax_t file_size, int fd)
 {
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL); // a reader left alone never holds stdout long
   limitChild(file_size);
   int code = kChildException;
   try {

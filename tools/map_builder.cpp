@@ -19,15 +19,13 @@ void MapBuilder::add(const pcl::PointCloud<pcl::PointXYZI>& scan,
         world_scan.topLeftCorner<3, 3>() * p.getVector3fMap().cast<double>() +
         world_scan.topRightCorner<3, 1>();
     const Eigen::Vector4d point(q.x(), q.y(), q.z(), p.intensity);
-    if (!(voxel_ > 0.0)) {
+    const Eigen::Array3d cell = (q / voxel_).array().floor();
+    if (!(voxel_ > 0.0) || !(cell.abs() < 4.0e18).all()) {
       points_.push_back(point);
       continue;
     }
-    // 21 bits a coordinate: +-1M cubes about the origin (100 km at 0.1 m).
-    const Eigen::Array3d cell = (q / voxel_).array().floor() + (1 << 20);
-    const long long key = (static_cast<long long>(cell.x()) << 42) |
-                          (static_cast<long long>(cell.y()) << 21) |
-                          static_cast<long long>(cell.z());
+    const Cell key{static_cast<long long>(cell.x()), static_cast<long long>(cell.y()),
+                   static_cast<long long>(cell.z())};
     auto [it, added] = cells_.try_emplace(key, Eigen::Vector4d::Zero(), 0);
     if (added)
       order_.push_back(key);
@@ -50,7 +48,7 @@ MapBuilder::cloud(const Eigen::Matrix4d& site) const
   };
   for (const Eigen::Vector4d& m : points_)
     put(m);
-  for (long long key : order_) {
+  for (const Cell& key : order_) {
     const auto& cell = cells_.at(key);
     put(cell.first / cell.second);
   }

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -29,7 +30,8 @@ public:
       : voxel_(voxel)
   {
   }
-  /** \brief Add \a scan's finite points moved by \a world_scan (T_world_scan). */
+  /** \brief Add \a scan's finite points moved by \a world_scan (T_world_scan); points
+   *  whose cube index would not fit 62 bits are kept unthinned. */
   void add(const pcl::PointCloud<pcl::PointXYZI>& scan,
            const Eigen::Matrix4d& world_scan);
   /** \brief The map, each point moved by \a site (default: the world frame). */
@@ -37,9 +39,21 @@ public:
   cloud(const Eigen::Matrix4d& site = Eigen::Matrix4d::Identity()) const;
 
 private:
+  /** A cube's integer coordinates. */
+  struct Cell {
+    long long x, y, z;
+    bool operator==(const Cell& o) const { return x == o.x && y == o.y && z == o.z; }
+  };
+  struct CellHash {
+    std::size_t operator()(const Cell& c) const
+    {
+      return std::hash<long long>()(c.x * 73856093LL ^ c.y * 19349663LL ^
+                                    c.z * 83492791LL);
+    }
+  };
   double voxel_;
-  std::unordered_map<long long, std::pair<Eigen::Vector4d, int>> cells_;
-  std::vector<long long> order_;
+  std::unordered_map<Cell, std::pair<Eigen::Vector4d, int>, CellHash> cells_;
+  std::vector<Cell> order_;
   std::vector<Eigen::Vector4d> points_; ///< with voxel 0
 };
 

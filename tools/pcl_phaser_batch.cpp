@@ -284,11 +284,12 @@ int odometrySettings(const Given& given, std::optional<batch::OdometrySigma>& od
     sigma.translation = std::strtod(text.c_str(), &end);
     const bool comma = *end == ',';
     sigma.rotation_deg = comma ? std::strtod(end + 1, &end) : 0.0;
-    if (!comma || *end != '\0' || !(sigma.translation > 0.0) ||
-        !(sigma.rotation_deg > 0.0) || !std::isfinite(sigma.translation) ||
+    // 1e-6 m and deg at least: the information (1 / sigma^2) must stay finite.
+    if (!comma || *end != '\0' || !(sigma.translation >= 1e-6) ||
+        !(sigma.rotation_deg >= 1e-6) || !std::isfinite(sigma.translation) ||
         !std::isfinite(sigma.rotation_deg))
       return usage("Invalid --odometry-sigma '" + text +
-                   "': expected T_M,R_DEG, two numbers > 0");
+                   "': expected T_M,R_DEG, two finite numbers >= 1e-6");
   }
   odometry = sigma;
   return batch::kOk;

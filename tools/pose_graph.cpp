@@ -20,6 +20,10 @@ namespace graph {
 
 namespace {
 
+/** Scale of the robust loss on the whitened 6-D error: the 95 % point of chi-square(6)
+ *  is 3.55^2, so consistent edges stay in the quadratic part. */
+constexpr double kRobustScale = 3.55;
+
 /** g2o's EDGE_SE3:QUAT error, whitened: sqrt_information * (translation, quaternion
  *  x y z) of Z^-1 * T_a^-1 * T_b, the quaternion taken with w >= 0. */
 struct EdgeError {
@@ -55,7 +59,8 @@ bool readEdge(std::istringstream& fields, Edge& e)
     return false;
   e.translation = {x, y, z};
   e.rotation = Eigen::Quaterniond(qw, qx, qy, qz);
-  if (!(e.rotation.norm() > 0.5) || !e.translation.allFinite())
+  if (e.from == e.to || !e.rotation.coeffs().allFinite() ||
+      !(e.rotation.norm() > 0.5) || !e.translation.allFinite())
     return false;
   e.rotation.normalize();
   for (int i = 0; i < 6; ++i)
@@ -64,7 +69,7 @@ bool readEdge(std::istringstream& fields, Edge& e)
         return false;
       e.information(j, i) = e.information(i, j);
     }
-  e.odometry = e.to == e.from + 1;
+  e.odometry = static_cast<long long>(e.to) == static_cast<long long>(e.from) + 1;
   return Eigen::LLT<Eigen::Matrix<double, 6, 6>>(e.information).info() ==
          Eigen::Success;
 }
@@ -76,7 +81,8 @@ bool readVertex(std::istringstream& fields, PoseGraph& graph)
   if (!(fields >> id >> x >> y >> z >> qx >> qy >> qz >> qw))
     return false;
   const Eigen::Quaterniond q(qw, qx, qy, qz);
-  if (!(q.norm() > 0.5) || !Eigen::Vector3d(x, y, z).allFinite())
+  if (!q.coeffs().allFinite() || !(q.norm() > 0.5) ||
+      !Eigen::Vector3d(x, y, z).allFinite())
     return false;
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = q.normalized().toRotationMatrix();
@@ -106,7 +112,7 @@ std::string readG2o(const std::string& path, PoseGraph& graph)
         return at + ": expected VERTEX_SE3:QUAT id x y z qx qy qz qw, a new id";
     } else if (tag == "EDGE_SE3:QUAT") {
       if (!readEdge(fields, edge))
-        return at + ": expected EDGE_SE3:QUAT i j x y z qx qy qz qw and 21 "
+        return at + ": expected EDGE_SE3:QUAT i j x y z qx qy qz qw (i != j) and 21 "
                     "information entries (positive definite)";
       graph.edges.push_back(edge);
     } else if (tag == "FIX" && fields >> id) {
@@ -143,19 +149,19 @@ std::string optimize(PoseGraph& graph, Loss loss, std::string* summary)
     auto* cost = new ceres::AutoDiffCostFunction<EdgeError, 6, 3, 4, 3, 4>(
         new EdgeError{e.translation, e.rotation, S});
     ceres::LossFunction* robust = nullptr;
-    if (!e.odometry && loss == Loss::Huber)
-      robust = new ceres::HuberLoss(1.0);
-    else if (!e.odometry && loss == Loss::Cauchy)
-      robust = new ceres::CauchyLoss(1.0);
+    if (loss == Loss::Huber)
+      robust = new ceres::HuberLoss(kRobustScale);
+    else if (loss == Loss::Cauchy)
+      robust = new ceres::CauchyLoss(kRobustScale);
     problem.AddResidualBlock(cost, robust, a.t.data(), a.q.coeffs().data(), b.t.data(),
                              b.q.coeffs().data());
   }
   for (auto& [id, block] : blocks)
     if (problem.HasParameterBlock(block.q.coeffs().data()))
       problem.SetManifold(block.q.coeffs().data(), new ceres::EigenQuaternionManifold);
-  const int anchor = graph.fixed.empty() ? blocks.begin()->first : -1;
+  const bool hold_first = graph.fixed.empty();
   for (auto& [id, block] : blocks)
-    if ((graph.fixed.count(id) || id == anchor) &&
+    if ((graph.fixed.count(id) || (hold_first && id == blocks.begin()->first)) &&
         problem.HasParameterBlock(block.t.data())) {
       problem.SetParameterBlockConstant(block.t.data());
       problem.SetParameterBlockConstant(block.q.coeffs().data());

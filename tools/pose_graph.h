@@ -26,7 +26,7 @@ struct Edge {
   Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
   /** of g2o's error (translation, quaternion x y z of measurement^-1 * estimate) */
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Identity();
-  bool odometry = false; ///< between consecutive vertices (to = from + 1)
+  bool odometry = false; ///< between consecutive vertices (to = from + 1): drawn apart
 };
 
 /** \brief A pose graph: vertices T_world_vertex by id, edges, fixed vertices. */
@@ -45,8 +45,9 @@ std::string readG2o(const std::string& path, PoseGraph& graph);
 enum class Loss { None, Huber, Cauchy };
 
 /** \brief Optimize the vertices of \a graph in place (the fixed ones, or the first
- *  when none is fixed, held); \a loss with scale 1 on the whitened error applies to
- *  every edge but the odometry ones. \return the reason on failure, else empty */
+ *  when none is fixed, held); \a loss applies to every edge, with scale 3.55 on the
+ *  whitened error (chi-square(6)'s 95 % point). \return the reason on failure, else
+ *  empty */
 std::string optimize(PoseGraph& graph, Loss loss, std::string* summary = nullptr);
 
 /** \brief The vertices as a poses file: per vertex, in id order, the 12 numbers of its

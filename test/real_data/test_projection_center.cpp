@@ -78,22 +78,6 @@ int automaticRandomPoses(const std::string& relative, int poses)
   return ok;
 }
 
-/** One registration in Automatic mode, which must converge and choose \a expected;
- * returns the estimate. */
-Eigen::Matrix4d alignAutomatic(const CloudXYZ::Ptr& source, const CloudXYZ::Ptr& target,
-                               Center expected)
-{
-  Phaser phaser;
-  phaser.setProjectionCenter(Center::Automatic);
-  phaser.setInputSource(source);
-  phaser.setInputTarget(target);
-  CloudXYZ out;
-  phaser.align(out);
-  EXPECT_TRUE(phaser.hasConverged());
-  EXPECT_EQ(phaser.getResult().projection_center, expected);
-  return phaser.getFinalTransformation().cast<double>();
-}
-
 } // namespace
 
 TEST(AutomaticCenter, SeparatesCloudsInTheirFramesFromMovedOnes)

@@ -248,11 +248,20 @@ TEST(BatchMerge, JoinsPartsInPairOrderAndRefusesGapsAndRepeats)
       "");
   EXPECT_EQ(readText(folder + "/all.g2o"),
             "VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nFIX 0\nEDGE_SE3:QUAT 0 1 x\n");
+  // A loop edge beside the odometry edge of its pair (--min-gap 1) is kept; a third
+  // line for one pair means parts of different runs.
   std::ofstream(folder + "/d.g2o") << "EDGE_SE3:QUAT 0 1 z\n";
-  EXPECT_NE(
-      batch::mergeParts(folder + "/all.g2o", {folder + "/a.g2o", folder + "/d.g2o"})
-          .find("differs"),
-      std::string::npos);
+  std::ofstream(folder + "/e.g2o") << "EDGE_SE3:QUAT 0 1 w\n";
+  ASSERT_EQ(
+      batch::mergeParts(folder + "/all.g2o", {folder + "/a.g2o", folder + "/d.g2o"}),
+      "");
+  EXPECT_EQ(readText(folder + "/all.g2o"),
+            "VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\n"
+            "EDGE_SE3:QUAT 0 1 x\nEDGE_SE3:QUAT 0 1 z\n");
+  EXPECT_NE(batch::mergeParts(folder + "/all.g2o",
+                              {folder + "/a.g2o", folder + "/d.g2o", folder + "/e.g2o"})
+                .find("differs"),
+            std::string::npos);
   EXPECT_NE(batch::mergeParts(out, {folder + "/a.g2o"}).find("not of the kind"),
             std::string::npos);
   EXPECT_NE(batch::mergeParts(out, {folder + "/none.jsonl"}).find("cannot read"),

@@ -34,7 +34,7 @@ std::string folder()
 TEST(CloudReaderProcess, ReadsAsTheCallerWouldAndFallsBackWhenKilled)
 {
   const std::string dir = folder();
-  pcl::PointCloud<pcl::PointXYZI> cloud;
+  pcl::PointCloud<pcl::PointXYZI> cloud; // organized, 10 rows of 100: rows must not mix
   for (int i = 0; i < 1000; ++i) {
     pcl::PointXYZI p;
     p.x = 0.01f * static_cast<float>(i);
@@ -43,6 +43,8 @@ TEST(CloudReaderProcess, ReadsAsTheCallerWouldAndFallsBackWhenKilled)
     p.intensity = static_cast<float>(i % 7);
     cloud.push_back(p);
   }
+  cloud.width = 100;
+  cloud.height = 10;
   ASSERT_EQ(pcl::io::savePCDFileBinary(dir + "/c.pcd", cloud), 0);
   std::ofstream(dir + "/bad.pcd") << "VERSION .7\nFIELDS x y z\nSIZE 4 4\nWIDTH 9\n";
 
@@ -56,7 +58,9 @@ TEST(CloudReaderProcess, ReadsAsTheCallerWouldAndFallsBackWhenKilled)
   EXPECT_EQ(pcl::phaser::cloudReaderPid(), pid);
   ASSERT_TRUE(pcl::phaser::loadCloud(dir + "/c.pcd", through, &error)) << error;
   ASSERT_EQ(through.size(), direct.size());
+  EXPECT_EQ(through.height, 10u);
   for (std::size_t i = 0; i < direct.size(); ++i) {
+    EXPECT_EQ(through[i].x, 0.01f * static_cast<float>(i));
     EXPECT_EQ(through[i].x, direct[i].x);
     EXPECT_EQ(through[i].intensity, direct[i].intensity);
   }

@@ -45,7 +45,8 @@ batch::Record record(int i, int j, const Eigen::Matrix4d& T, const Matrix6d& C)
 
 /** Closures of 8 scans 10 m and any rotation apart, all 28 edges measured: T_est from
  *  the truth by omega, nu ~ N(0, C) with R_true = Exp(omega) R_est, t_true = t_est + nu
- *  (target frame); \a source_frame draws them in the source's frame instead. */
+ *  (target frame), a third of them with the later scan as target; \a source_frame draws
+ *  them in the source's frame instead. */
 std::vector<batch::Closure> simulate(std::mt19937& rng, bool source_frame)
 {
   std::normal_distribution<double> n01;
@@ -70,7 +71,11 @@ std::vector<batch::Closure> simulate(std::mt19937& rng, bool source_frame)
       const Matrix6d C = Q * s.cwiseAbs2().asDiagonal() * Q.transpose();
       const Eigen::Matrix<double, 6, 1> d =
           Eigen::LLT<Matrix6d>(C).matrixL() * Eigen::Matrix<double, 6, 1>(gaussian(6));
-      const Eigen::Matrix4d truth = world[i].inverse() * world[j];
+      // Every third edge measured the other way (the later scan as target), its noise
+      // drawn in its own target frame: the check inverts it with its own Jacobian.
+      const bool reversed = (i + j) % 3 == 0;
+      const int target = reversed ? j : i, source = reversed ? i : j;
+      const Eigen::Matrix4d truth = world[target].inverse() * world[source];
       Eigen::Matrix4d T = truth;
       Eigen::Vector3d w = d.head<3>(), v = d.tail<3>();
       if (source_frame) {
@@ -79,7 +84,7 @@ std::vector<batch::Closure> simulate(std::mt19937& rng, bool source_frame)
       }
       T.topLeftCorner<3, 3>() = exp3(-w) * truth.topLeftCorner<3, 3>();
       T.topRightCorner<3, 1>() -= v;
-      records.push_back(record(i, j, T, C));
+      records.push_back(record(target, source, T, C));
     }
   return batch::loopClosures(records);
 }

@@ -179,6 +179,9 @@ TEST(PoseGraph, MalformedFilesAreRefusedWithTheReason)
   for (int k = 0; k < 21; ++k)
     edge += k == 0 || k == 6 || k == 11 || k == 15 || k == 18 || k == 20 ? " 1" : " 0";
   refuse(v0 + edge + "\n", "missing vertex");
+  std::string self =
+      "EDGE_SE3:QUAT 0 0" + edge.substr(std::string("EDGE_SE3:QUAT 0 1").size());
+  refuse(v0 + self + "\n", "line 2"); // a self-loop, its information positive definite
   std::string singular = "EDGE_SE3:QUAT 0 0 1 0 0 0 0 0 1";
   for (int k = 0; k < 21; ++k)
     singular += " 0";

@@ -15,9 +15,9 @@ enum class ProjectionCenter {
   SensorOrigin, ///< each cloud's frame origin (LiDAR scans in their sensor frame)
   Centroid,     ///< each cloud's centroid (object scans, clouds far from their origin)
   /** The default: SensorOrigin when the source looks like a scan seen from its frame
-   *  origin (its nearest point within a tenth of its extent of it) and so does the
-   *  target or the target's origin is off its data (a map in a site frame), else
-   *  Centroid (see PhaserResult::projection_center). */
+   *  origin (its nearest point within half its bounding-box diagonal of it) and so
+   *  does the target or the target's origin is off its data (a map in a site frame),
+   *  else Centroid (see PhaserResult::projection_center). */
   Automatic
 };
 
