@@ -35,7 +35,9 @@ struct SpatialAllocator {
   template <typename U>
   void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>)
   {
-    ::new (static_cast<void*>(p)) U;
+    // std::complex's default constructor zeroes; its bytes are written before use.
+    if constexpr (!std::is_same_v<U, std::complex<double>>)
+      ::new (static_cast<void*>(p)) U;
   }
   template <typename U, typename... Args>
   void construct(U* p, Args&&... args)

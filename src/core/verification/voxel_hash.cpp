@@ -18,6 +18,18 @@ namespace {
 
 constexpr std::int64_t kBias = std::int64_t(1) << 20;
 
+/** d2[j] = |p_(first + j) - q|^2 for j < m, the coordinates one array per axis; the
+ *  same arithmetic as (p - q).squaredNorm(). AVX2 and the default (no FMA). */
+[[gnu::target_clones("avx2", "default")]] void
+squaredDistances(const double* x, const double* y, const double* z, Eigen::Index m,
+                 double qx, double qy, double qz, double* d2)
+{
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const double dx = x[j] - qx, dy = y[j] - qy, dz = z[j] - qz;
+    d2[j] = dx * dx + dy * dy + dz * dz;
+  }
+}
+
 } // namespace
 
 bool voxelKey(const Eigen::Vector3d& p, double voxel, std::int64_t& key)
@@ -190,6 +202,9 @@ PointIndex::PointIndex(const Eigen::Matrix3Xd& points, double radius,
     if (normals.cols() != 0)
       normals_.col(static_cast<Eigen::Index>(k)) = normals.col(groups.order[k]);
   }
+  has_normal_.resize(static_cast<std::size_t>(normals_.cols()));
+  for (Eigen::Index k = 0; k < normals_.cols(); ++k)
+    has_normal_[static_cast<std::size_t>(k)] = !normals_.col(k).isZero();
   // Open addressing with linear probing, at most a quarter full. Each cell with points
   // marks itself in the 27 cells around it, so a query probes only those that hold
   // points.
@@ -310,15 +325,36 @@ void PointIndex::scanCell(const Cell& cell, const Eigen::Vector3d& q,
                           const Eigen::Vector3d& normal, double min_cosine,
                           double& best, Eigen::Index& found) const
 {
+  // In chunks: the squared distances (+infinity where the normal disagrees) in a loop
+  // the compiler vectorizes, then the nearest in point order (the last of equals, as a
+  // plain scan), with the same arithmetic as (p - q).squaredNorm() and n.dot(normal).
+  constexpr Eigen::Index kChunk = 64;
   const bool check = normals_.cols() != 0 && !normal.isZero();
-  for (Eigen::Index k = cell.first; k < cell.last; ++k) {
-    if (check && !normals_.col(k).isZero() && normals_.col(k).dot(normal) < min_cosine)
-      continue;
-    const double d2 = (points_.col(k) - q).squaredNorm();
-    if (d2 <= best) {
-      best = d2;
-      found = k;
+  const double* x = points_.row(0).data();
+  const double* y = points_.row(1).data();
+  const double* z = points_.row(2).data();
+  const double qx = q.x(), qy = q.y(), qz = q.z();
+  const double infinity = std::numeric_limits<double>::infinity();
+  double d2[kChunk];
+  for (Eigen::Index base = cell.first; base < cell.last; base += kChunk) {
+    const Eigen::Index m = std::min(kChunk, cell.last - base);
+    squaredDistances(x + base, y + base, z + base, m, qx, qy, qz, d2);
+    if (check) {
+      const double* nx = normals_.row(0).data();
+      const double* ny = normals_.row(1).data();
+      const double* nz = normals_.row(2).data();
+      const char* has = has_normal_.data();
+      for (Eigen::Index j = 0; j < m; ++j) {
+        const Eigen::Index k = base + j;
+        const double dot = nx[k] * normal.x() + ny[k] * normal.y() + nz[k] * normal.z();
+        d2[j] = has[k] && dot < min_cosine ? infinity : d2[j];
+      }
     }
+    for (Eigen::Index j = 0; j < m; ++j)
+      if (d2[j] <= best) {
+        best = d2[j];
+        found = base + j;
+      }
   }
 }
 

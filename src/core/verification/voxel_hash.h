@@ -91,12 +91,16 @@ private:
                 const Eigen::Vector3d& normal, double min_cosine, double& best,
                 Eigen::Index& found) const;
 
+  /** Points and normals one row per axis (row-major): a cell's coordinates are
+   *  contiguous per axis, so scanCell's distances vectorize. */
+  using Rows = Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::RowMajor>;
   double radius_ = 0.0;
-  Eigen::Matrix3Xd points_;
-  Eigen::Matrix3Xd normals_; ///< empty, or one per point
-  std::vector<Cell> slots_;  ///< a power of two of them, at most a quarter used
-  std::size_t used_ = 0;     ///< slots holding a cell
-  int slot_shift_ = 60;      ///< 64 - log2(slots_.size())
+  Rows points_;
+  Rows normals_;                 ///< empty, or one per point
+  std::vector<char> has_normal_; ///< per point: its normal is not zero
+  std::vector<Cell> slots_;      ///< a power of two of them, at most a quarter used
+  std::size_t used_ = 0;         ///< slots holding a cell
+  int slot_shift_ = 60;          ///< 64 - log2(slots_.size())
 };
 
 } // namespace pcl::phaser
