@@ -36,7 +36,7 @@ std::shared_ptr<CloudEntry> loadEntry(const std::string& path, std::string& erro
 
 /** \brief Align with the registration kept in \a prepared (made on first use). */
 template <typename PointT>
-AlignOutcome
+PhaserResult
 alignWith(std::shared_ptr<pcl::PhaserRegistration<PointT, PointT>>& prepared,
           const typename pcl::PointCloud<PointT>::Ptr& source,
           const typename pcl::PointCloud<PointT>::Ptr& target,
@@ -50,10 +50,7 @@ alignWith(std::shared_ptr<pcl::PhaserRegistration<PointT, PointT>>& prepared,
   prepared->setInputSource(source);
   pcl::PointCloud<PointT> aligned;
   prepared->align(aligned, guess.cast<float>());
-  AlignOutcome outcome;
-  outcome.result = prepared->getResult();
-  outcome.covariance = prepared->getCovariance();
-  return outcome;
+  return prepared->getResult();
 }
 
 } // namespace
@@ -70,7 +67,7 @@ std::shared_ptr<const CloudEntry> CloudCache::get(const std::string& path,
   return entry;
 }
 
-AlignOutcome alignClouds(const CloudEntry& source, const std::string& target_path,
+PhaserResult alignClouds(const CloudEntry& source, const std::string& target_path,
                          const CloudEntry& target, PreparedTargets& prepared,
                          const Eigen::Matrix4d& guess, const PhaserParameters& params)
 {

@@ -99,16 +99,10 @@ struct PreparedTarget {
 /** \brief A job's prepared targets, least recently used out first (not shared). */
 using PreparedTargets = LruCache<PreparedTarget>;
 
-/** \brief What one align gave: the engine's result and getCovariance(). */
-struct AlignOutcome {
-  PhaserResult result;
-  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
-};
-
 /** \brief Register \a source onto \a target (the cloud of \a target_path) with \a
  * params and \a guess, as pcl_phaser_align does (intensity fused when both have it),
  *  preparing the target on its first use in \a prepared and reusing it after. */
-AlignOutcome alignClouds(const CloudEntry& source, const std::string& target_path,
+PhaserResult alignClouds(const CloudEntry& source, const std::string& target_path,
                          const CloudEntry& target, PreparedTargets& prepared,
                          const Eigen::Matrix4d& guess, const PhaserParameters& params);
 

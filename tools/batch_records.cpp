@@ -149,7 +149,7 @@ std::string pairKey(const std::string& source, const std::string& target)
 }
 
 Record alignedRecord(const Pair& pair, std::size_t pairs, const PhaserResult& result,
-                     const Eigen::Matrix<double, 6, 6>& covariance, double time_ms)
+                     double time_ms)
 {
   if (!result.error.empty())
     return failedRecord(pair, pairs, result.error);
@@ -157,7 +157,7 @@ Record alignedRecord(const Pair& pair, std::size_t pairs, const PhaserResult& re
   r["status"] = "ok";
   r["transformation"] = nested<4, 4>(result.transformation);
   r["converged"] = result.converged;
-  r["covariance"] = nested<6, 6>(covariance);
+  r["covariance"] = nested<6, 6>(result.covariance);
   const PhaserDiagnostics& diagnostics = result.diagnostics;
   r["inlier_fraction"] = diagnostics.verification.inlier_fraction;
   r["verification_score"] = diagnostics.verification.score;

@@ -28,10 +28,10 @@ using Record = nlohmann::ordered_json;
 
 /** \brief The record of a pair that was aligned: source, target, their ids, pair
  *  index and count, transformation (4x4 row-major), converged, covariance (6x6, the
- *  order of getCovariance(): rotation vector [rad], translation [m]), the
- *  verification figures and time_ms. Numbers round-trip exactly. */
+ *  order of PhaserResult::covariance: rotation vector [rad], translation [m]),
+ *  the verification figures and time_ms. Numbers round-trip exactly. */
 Record alignedRecord(const Pair& pair, std::size_t pairs, const PhaserResult& result,
-                     const Eigen::Matrix<double, 6, 6>& covariance, double time_ms);
+                     double time_ms);
 
 /** \brief The record of a pair that could not be aligned: status "failed" and why. */
 Record failedRecord(const Pair& pair, std::size_t pairs, const std::string& reason);

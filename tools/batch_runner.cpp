@@ -173,12 +173,12 @@ std::optional<Record> alignPair(const Pair& pair, Run& run, PreparedTargets& pre
     return failedRecord(pair, pairs, error);
   }
   const auto start = std::chrono::steady_clock::now();
-  const AlignOutcome outcome =
+  const PhaserResult result =
       alignClouds(*source, pair.target_path, *target, prepared, pair.guess, run.params);
   const double ms = std::chrono::duration<double, std::milli>(
                         std::chrono::steady_clock::now() - start)
                         .count();
-  return alignedRecord(pair, pairs, outcome.result, outcome.covariance, ms);
+  return alignedRecord(pair, pairs, result, ms);
 }
 
 /** \brief One job: takes pieces until none is left, a stop is asked or a write

@@ -20,11 +20,9 @@ namespace pcl::phaser::python {
 
 namespace py = pybind11;
 
-/** \brief One align's answer for Python: the engine's result and the covariance of
- *  pcl::PhaserRegistration::getCovariance() (zero unless converged). */
+/** \brief One align's answer for Python: the engine's result. */
 struct AlignResult {
   PhaserResult result;
-  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
 /** \brief A cloud converted from numpy: finite points and their channel values. */
@@ -53,8 +51,7 @@ PhaserParameters parametersFrom(const py::handle& params);
 /** \brief Whether \a params fuse the intensity channel (CHANNEL_INTENSITY). */
 bool usesIntensity(const PhaserParameters& params);
 
-/** \brief pcl::phaser::align on \a target and \a source with the GIL released, and the
- *  covariance as getCovariance() computes it. */
+/** \brief pcl::phaser::align on \a target and \a source with the GIL released. */
 AlignResult alignReleased(const Target& target, const SourceCloud& source,
                           const Eigen::Matrix4d& guess, const PhaserParameters& params);
 

@@ -129,7 +129,8 @@ void bindResult(py::module_& m)
       .def_property_readonly("transformation",
                              [](const R& r) { return r.result.transformation; })
       .def_property_readonly("converged", [](const R& r) { return r.result.converged; })
-      .def_readonly("covariance", &R::covariance)
+      .def_property_readonly("covariance",
+                             [](const R& r) { return r.result.covariance; })
       .def_property_readonly("projection_center",
                              [](const R& r) { return r.result.projection_center; })
       .def_property_readonly("chosen_hypothesis",

@@ -110,7 +110,7 @@ void visitScalars(AlignResult& a, S& s)
   PhaserDiagnostics& d = r.diagnostics;
   s(r.error), s(r.transformation), s(r.converged), s(r.projection_center),
       s(r.chosen_hypothesis), s(r.lever_arm), s(r.translation_covariance),
-      s(r.fit_covariance), s(a.covariance);
+      s(r.fit_covariance), s(r.covariance);
   s(d.rotation_score), s(d.translation_score), s(d.normalized_overlap),
       s(d.runner_up_rank), s(d.runner_up_error), s(d.verification_radius),
       s(d.verification_samples), s(d.verified), s(d.passes);

@@ -98,9 +98,6 @@ AlignResult alignReleased(const Target& target, const SourceCloud& source,
   py::gil_scoped_release released;
   AlignResult r;
   r.result = align(target, source, guess, params);
-  if (r.result.converged) // as pcl::PhaserRegistration::getCovariance()
-    r.covariance =
-        poseCovariance(r.result, rotationUncertainty(r.result), params.bandwidth);
   return r;
 }
 

@@ -273,6 +273,11 @@ TEST(PhaserRegistration, CovarianceIsPositiveDefiniteAndCoversTheError)
     const Eigen::Matrix<double, 6, 6> cov = phaser.getCovariance();
     ASSERT_TRUE(cov.allFinite());
     EXPECT_TRUE(cov.isApprox(phaser.getResult().fit_covariance)) << "B " << B;
+    // The engine finishes its answer: align()'s covariance is poseCovariance's.
+    const pcl::phaser::PhaserResult& result = phaser.getResult();
+    EXPECT_EQ(result.covariance,
+              pcl::phaser::poseCovariance(result,
+                                          pcl::phaser::rotationUncertainty(result), B));
     EXPECT_LT((cov - cov.transpose()).norm(), 1e-12 * cov.norm());
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(cov);
     EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0) << "B " << B;
@@ -300,6 +305,7 @@ TEST(PhaserRegistration, CovarianceIsPositiveDefiniteAndCoversTheError)
   unrelated.align(out);
   ASSERT_FALSE(unrelated.hasConverged());
   EXPECT_TRUE(unrelated.getCovariance().isZero());
+  EXPECT_TRUE(unrelated.getResult().covariance.isZero());
 }
 
 TEST(PhaserRegistration, CachedTargetGivesIdenticalResults)

@@ -68,7 +68,8 @@ batch::Record convergedRecord(std::size_t index, int target, int source,
   pcl::phaser::PhaserResult result;
   result.transformation = T;
   result.converged = true;
-  return batch::alignedRecord(pair, 3, result, covariance, 1.0);
+  result.covariance = covariance;
+  return batch::alignedRecord(pair, 3, result, 1.0);
 }
 
 /** \brief g2o's EdgeSE3 error of measurement \a Z at the true relative pose: the

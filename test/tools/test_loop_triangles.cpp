@@ -40,7 +40,8 @@ batch::Record record(int i, int j, const Eigen::Matrix4d& T, const Matrix6d& C)
   pcl::phaser::PhaserResult result;
   result.transformation = T;
   result.converged = true;
-  return batch::alignedRecord(pair, 1, result, C, 1.0);
+  result.covariance = C;
+  return batch::alignedRecord(pair, 1, result, 1.0);
 }
 
 /** Closures of 8 scans 10 m and any rotation apart, all 28 edges measured: T_est from

@@ -107,6 +107,10 @@ struct PhaserResult {
   /** \brief Covariance of the final pose from its point-to-plane fit, as
    *  poseCovariance(); zero when too few samples match or a direction is unmeasured. */
   Eigen::Matrix<double, 6, 6> fit_covariance = Eigen::Matrix<double, 6, 6>::Zero();
+  /** \brief Covariance of the pose error, poseCovariance(result,
+   *  rotationUncertainty(result), bandwidth): fit_covariance, else the spectral model;
+   *  symmetric positive definite when converged, zero otherwise. */
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
   PhaserDiagnostics diagnostics; ///< scores, verification, hypotheses, timings
 };
 

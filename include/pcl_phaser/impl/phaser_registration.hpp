@@ -179,8 +179,7 @@ PhaserRegistration<PointSource, PointTarget, Scalar>::getCovariance() const
 {
   if (!converged_) // e.g. a new source since the last align()
     return Eigen::Matrix<double, 6, 6>::Zero();
-  return pcl::phaser::poseCovariance(result_, getRotationUncertainty(),
-                                     params_.bandwidth);
+  return result_.covariance;
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar>

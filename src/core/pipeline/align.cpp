@@ -255,6 +255,8 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
   result.converged = converged(result, params);
   if (region_on)
     detail::confineToRegion(result, region);
+  result.covariance =
+      poseCovariance(result, rotationUncertainty(result), params.bandwidth);
   return result;
 }
 

@@ -1,0 +1,230 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ *
+ * pcl_phaser_revisit_speed: the time of pcl::PhaserRegistration::align on revisit pairs
+ * (two scans of one place meters apart: loop-closure candidates), the work users bring.
+ * For each pair of the list, in a warm process (one align of the first pair before any
+ * timing): a fresh align (target set again: spectra, grids and index rebuilt) and a
+ * cached one, with 1 and with 2 engine threads, each with its stages and minor page
+ * faults; then two aligns of consecutive pairs in two threads of the process (1 engine
+ * thread each) against the same two in series. Medians over the pairs, in ms and in
+ * FFT units (one 128^3 r2c FFT on one thread, measured before and after the aligns).
+ *
+ *   pcl_phaser_revisit_speed [-data DIR] [-pairs-file F] [-max-pairs N]
+ *
+ * The list: `source target ...` per line (# comments), scans under its folder.
+ */
+#include "cloud_reading.h"
+#include "fft_yardstick.h"
+
+#include <pcl_phaser/phaser_registration.h>
+
+#include <pcl/console/parse.h>
+#include <pcl/filters/filter.h>
+#include <pcl/point_types.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/resource.h>
+#include <thread>
+#include <vector>
+
+namespace {
+
+using PointT = pcl::PointXYZI;
+using Cloud = pcl::PointCloud<PointT>;
+using Clock = std::chrono::steady_clock;
+
+/** One align: wall time, stages and minor page faults. */
+struct Timing {
+  double ms = 0.0;
+  long faults = 0;
+  pcl::phaser::StageTimes stages;
+};
+
+struct Pair {
+  Cloud::Ptr source, target;
+};
+
+double msSince(Clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+long minorFaults()
+{
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_minflt;
+}
+
+Timing timedAlign(pcl::PhaserRegistration<PointT, PointT>& phaser)
+{
+  Cloud out;
+  const long faults = minorFaults();
+  const auto start = Clock::now();
+  phaser.align(out);
+  return {msSince(start), minorFaults() - faults, phaser.getResult().diagnostics.times};
+}
+
+double median(std::vector<double> v)
+{
+  if (v.empty())
+    return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/** The pairs of \a file, read from its folder; false with a message when unreadable. */
+bool readPairs(const std::string& file, int max_pairs, std::vector<Pair>& pairs)
+{
+  std::ifstream in(file);
+  if (!in) {
+    std::printf("skipped: %s not found (the shared data is absent)\n", file.c_str());
+    return false;
+  }
+  const std::string folder = file.substr(0, file.find_last_of('/') + 1);
+  std::string line;
+  while (std::getline(in, line) &&
+         (max_pairs <= 0 || static_cast<int>(pairs.size()) < max_pairs)) {
+    std::istringstream words(line);
+    std::string s, t;
+    if (line.empty() || line[0] == '#' || !(words >> s >> t))
+      continue;
+    Pair p{pcl::make_shared<Cloud>(), pcl::make_shared<Cloud>()};
+    std::string error;
+    if (!pcl::phaser::loadCloud(folder + s, *p.source, &error) ||
+        !pcl::phaser::loadCloud(folder + t, *p.target, &error)) {
+      std::fprintf(stderr, "error: %s\n", error.c_str());
+      return false;
+    }
+    pcl::Indices kept;
+    pcl::removeNaNFromPointCloud(*p.source, *p.source, kept);
+    pcl::removeNaNFromPointCloud(*p.target, *p.target, kept);
+    pairs.push_back(p);
+  }
+  return !pairs.empty();
+}
+
+/** The fresh and cached aligns of every pair with \a threads engine threads. */
+void timePairs(const std::vector<Pair>& pairs, int threads, std::vector<Timing>& fresh,
+               std::vector<Timing>& cached)
+{
+  for (const Pair& p : pairs) {
+    pcl::PhaserRegistration<PointT, PointT> phaser;
+    phaser.setNumberOfThreads(threads);
+    phaser.setInputSource(p.source);
+    phaser.setInputTarget(p.target);
+    fresh.push_back(timedAlign(phaser));
+    cached.push_back(timedAlign(phaser));
+  }
+}
+
+/** Median of \a field over \a runs, in ms. */
+template <typename Field>
+double medianOf(const std::vector<Timing>& runs, const Field& field)
+{
+  std::vector<double> v;
+  for (const Timing& t : runs)
+    v.push_back(field(t));
+  return median(v);
+}
+
+void printRow(const char* label, const std::vector<Timing>& runs, double unit)
+{
+  using T = const Timing&;
+  const auto cell = [&](auto field) {
+    const double ms = medianOf(runs, field);
+    std::printf(" %.1f / %.2f |", ms, ms / unit);
+  };
+  std::printf("| %s |", label);
+  cell([](T t) { return t.ms; });
+  cell([](T t) { return t.stages.target; });
+  cell([](T t) { return t.stages.sampling + t.stages.sht; });
+  cell([](T t) { return t.stages.so3 + t.stages.orientation; });
+  cell([](T t) { return t.stages.refinement; });
+  cell([](T t) { return t.stages.translation; });
+  cell([](T t) { return t.stages.verification; });
+  cell([](T t) { return t.ms - t.stages.total(); });
+  std::printf(" %.0f |\n", medianOf(runs, [](T t) { return double(t.faults); }));
+}
+
+/** Median ratio, over consecutive pairs, of two aligns in two threads (1 engine thread
+ *  each) to the same two aligns in series. */
+double twoThreadsRatio(const std::vector<Pair>& pairs)
+{
+  const auto alignOnce = [](const Pair& p) {
+    pcl::PhaserRegistration<PointT, PointT> phaser;
+    phaser.setNumberOfThreads(1);
+    phaser.setInputSource(p.source);
+    phaser.setInputTarget(p.target);
+    Cloud out;
+    phaser.align(out);
+  };
+  std::vector<double> ratios;
+  for (std::size_t k = 0; k + 1 < pairs.size(); k += 2) {
+    auto start = Clock::now();
+    alignOnce(pairs[k]);
+    alignOnce(pairs[k + 1]);
+    const double serial = msSince(start);
+    start = Clock::now();
+    std::thread other([&] { alignOnce(pairs[k + 1]); });
+    alignOnce(pairs[k]);
+    other.join();
+    ratios.push_back(msSince(start) / serial);
+  }
+  return median(ratios);
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  std::string data = "../shared/data";
+  int max_pairs = 0;
+  pcl::console::parse_argument(argc, argv, "-data", data);
+  pcl::console::parse_argument(argc, argv, "-max-pairs", max_pairs);
+  std::string file = data + "/lidar/balm_handheld/pairs.txt";
+  pcl::console::parse_argument(argc, argv, "-pairs-file", file);
+  std::vector<Pair> pairs;
+  if (!readPairs(file, max_pairs, pairs))
+    return 0;
+  const double before = pcl::phaser::bench::fftYardstickMs();
+  {
+    std::vector<Timing> warm, unused;
+    timePairs({pairs.front()}, 2, warm, unused); // tables, plans, pool
+  }
+  std::vector<Timing> fresh[2], cached[2];
+  for (int threads : {1, 2})
+    timePairs(pairs, threads, fresh[threads - 1], cached[threads - 1]);
+  const double ratio = twoThreadsRatio(pairs);
+  const double after = pcl::phaser::bench::fftYardstickMs();
+  const double unit = 0.5 * (before + after);
+  std::printf("%zu revisit pairs of %s, defaults (PointXYZI, intensity fused), warm "
+              "process. Yardstick: one 128^3 r2c FFT (1 thread) = %.2f ms before, %.2f "
+              "ms after (units: their mean).\nMedians over the pairs, ms / FFT units; "
+              "SO(3) includes the orientation histograms, sampling the SHT.\n\n",
+              pairs.size(), file.c_str(), before, after);
+  std::printf(
+      "| threads, target | total | target prep | sampling | SO(3) | refinement | "
+      "translation | verification | other | minor page faults |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+  printRow("1, fresh", fresh[0], unit);
+  printRow("1, cached", cached[0], unit);
+  printRow("2, fresh", fresh[1], unit);
+  printRow("2, cached", cached[1], unit);
+  std::vector<double> speedup;
+  for (std::size_t k = 0; k < pairs.size(); ++k)
+    speedup.push_back(fresh[0][k].ms / fresh[1][k].ms);
+  std::printf("\n2 threads against 1 (fresh, median over the pairs): %.2fx faster\n"
+              "two aligns in two threads of one process (1 engine thread each) / the "
+              "same two in series (median over %zu couples): %.2f\n",
+              median(speedup), pairs.size() / 2, ratio);
+  return 0;
+}
