@@ -5,7 +5,7 @@
  * The engine's work sharing (src/core/parallel.h): every index once, slots unique among
  * the threads at work, exceptions passed on after the chunks in flight, nested and
  * concurrent calls. (That a parked worker does not hold the caller up is a property of
- * the timing; doc/benchmarks.md, *Threads and a busy core*, measures it with a busy
+ * the timing; doc/benchmarks.md, *Threads, a busy core, the gravity prior, Python*, measures it with a busy
  * core.)
  */
 #include "support/parallel.h"
