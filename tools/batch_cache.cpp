@@ -6,6 +6,7 @@
 #include "pcl_phaser_align_steps.h"
 
 #include <pcl/common/io.h>
+#include <pcl/point_types.h>
 
 namespace pcl {
 namespace phaser {
@@ -22,35 +23,30 @@ std::shared_ptr<CloudEntry> loadEntry(const std::string& path, std::string& erro
       error = "'" + path + "' has no float32/float64 " + axis + " field";
       return nullptr;
     }
+  // The clouds as pcl::PhaserRegistration<PointXYZI> sees them: finite x, y, z and the
+  // intensity, each a float.
+  const auto cloud = align_tool::toFiniteCloud<pcl::PointXYZI>(blob);
   auto entry = std::make_shared<CloudEntry>();
-  entry->intensity = pcl::getFieldIndex(blob, "intensity") >= 0;
-  entry->xyz = align_tool::toFiniteCloud<pcl::PointXYZ>(blob);
-  if (entry->intensity)
-    entry->with_intensity = align_tool::toFiniteCloud<pcl::PointXYZI>(blob);
-  if (entry->xyz->empty()) {
+  entry->points.resize(3, static_cast<Eigen::Index>(cloud->size()));
+  if (pcl::getFieldIndex(blob, "intensity") >= 0)
+    entry->intensity.resize(entry->points.cols());
+  for (std::size_t i = 0; i < cloud->size(); ++i) {
+    const pcl::PointXYZI& p = (*cloud)[i];
+    entry->points.col(static_cast<Eigen::Index>(i)) = Eigen::Vector3d(p.x, p.y, p.z);
+    if (entry->hasIntensity())
+      entry->intensity[static_cast<Eigen::Index>(i)] = p.intensity;
+  }
+  if (entry->points.cols() == 0) {
     error = "'" + path + "' has no finite points";
     return nullptr;
   }
   return entry;
 }
 
-/** \brief Align with the registration kept in \a prepared (made on first use). */
-template <typename PointT>
-PhaserResult
-alignWith(std::shared_ptr<pcl::PhaserRegistration<PointT, PointT>>& prepared,
-          const typename pcl::PointCloud<PointT>::Ptr& source,
-          const typename pcl::PointCloud<PointT>::Ptr& target,
-          const Eigen::Matrix4d& guess, const PhaserParameters& params)
+/** \brief \a entry's points, and its intensity as the one channel when \a fused. */
+ChannelValues channelsOf(const CloudEntry& entry, bool fused)
 {
-  if (!prepared) {
-    prepared = std::make_shared<pcl::PhaserRegistration<PointT, PointT>>();
-    prepared->setInputTarget(target);
-  }
-  prepared->setParameters(params);
-  prepared->setInputSource(source);
-  pcl::PointCloud<PointT> aligned;
-  prepared->align(aligned, guess.cast<float>());
-  return prepared->getResult();
+  return fused ? ChannelValues{entry.intensity} : ChannelValues{};
 }
 
 } // namespace
@@ -76,10 +72,13 @@ PhaserResult alignClouds(const CloudEntry& source, const std::string& target_pat
     kept = std::make_shared<PreparedTarget>();
     prepared.put(target_path, kept);
   }
-  if (source.intensity && target.intensity)
-    return alignWith<pcl::PointXYZI>(kept->with_intensity, source.with_intensity,
-                                     target.with_intensity, guess, params);
-  return alignWith<pcl::PointXYZ>(kept->xyz, source.xyz, target.xyz, guess, params);
+  const bool fused = source.hasIntensity() && target.hasIntensity() &&
+                     (params.channels & CHANNEL_INTENSITY) != 0;
+  std::shared_ptr<const Target>& model = fused ? kept->with_intensity : kept->xyz;
+  if (!model)
+    model = std::make_shared<const Target>(target.points, channelsOf(target, fused));
+  SourceCloud cloud{source.points, channelsOf(source, fused)};
+  return align(*model, cloud, guess, params);
 }
 
 } // namespace batch

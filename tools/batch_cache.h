@@ -4,15 +4,13 @@
 /** \file batch_cache.h
  * \brief Clouds loaded once and targets prepared once for `pcl_phaser_batch`: a
  * thread-safe cache of loaded cloud files shared by the jobs of a run, and each job's
- * least recently used prepared targets (the pcl::PhaserRegistration that keeps a
- * target's spectra).
+ * least recently used prepared targets (pcl::phaser::Target, which keeps a target's
+ * spectra).
  */
 #pragma once
 
-#include <pcl_phaser/phaser_registration.h>
-
-#include <pcl/point_cloud.h>
-#include <pcl/point_types.h>
+#include <pcl_phaser/core/pipeline.h>
+#include <pcl_phaser/point_channels.h>
 
 #include <list>
 #include <map>
@@ -24,13 +22,13 @@ namespace pcl {
 namespace phaser {
 namespace batch {
 
-/** \brief One cloud file's finite points. */
+/** \brief One cloud file's finite points (3 x n, the file's float values). */
 struct CloudEntry {
-  /** \brief The file has an intensity field (fused when both clouds have one, as in
-   *  pcl_phaser_align). */
-  bool intensity = false;
-  pcl::PointCloud<pcl::PointXYZI>::Ptr with_intensity; ///< set when intensity
-  pcl::PointCloud<pcl::PointXYZ>::Ptr xyz;             ///< always set
+  Eigen::Matrix3Xd points;
+  /** \brief Per point, when the file has an intensity field (empty otherwise): fused
+   *  when both clouds have one, as in pcl_phaser_align. */
+  Eigen::VectorXd intensity;
+  bool hasIntensity() const { return intensity.size() != 0; }
 };
 
 /** \brief Least recently used items by path, at most \a capacity of them. */
@@ -89,11 +87,10 @@ private:
   LruCache<const CloudEntry> clouds_;
 };
 
-/** \brief One target file prepared for each point type it was aligned with. */
+/** \brief One target file prepared with its intensity and without (each made when a
+ *  source first needs it). */
 struct PreparedTarget {
-  std::shared_ptr<pcl::PhaserRegistration<pcl::PointXYZI, pcl::PointXYZI>>
-      with_intensity;
-  std::shared_ptr<pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ>> xyz;
+  std::shared_ptr<const Target> with_intensity, xyz;
 };
 
 /** \brief A job's prepared targets, least recently used out first (not shared). */
