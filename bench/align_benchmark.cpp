@@ -334,6 +334,39 @@ void compareTilt(const Cloud::Ptr& source, const Cloud::Ptr& target, int reps,
   std::printf("\nratio max_tilt / full: %.2f\n", p.total / f.total);
 }
 
+/** Every stage of the median fresh and cached align with 1 and 2 threads, in ms and
+ *  FFT units of \a unit ms. */
+void printStageTable(const Cloud::Ptr& source, const Cloud::Ptr& target, int reps,
+                     const pcl::phaser::PhaserParameters& params, bool range_only,
+                     double unit)
+{
+  std::printf("| threads | target | total | first | target prep | sampling | SHT "
+              "| SO(3) corr | refinement | translation | orientation | verification "
+              "| other | passes |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  const auto cell = [unit](double ms) {
+    char text[48];
+    std::snprintf(text, sizeof(text), "%.1f / %.2f", ms, ms / unit);
+    return std::string(text);
+  };
+  for (int threads : {1, 2})
+    for (bool cached : {false, true}) {
+      const Row r = measure(source, target, threads, cached, reps, params, range_only);
+      const pcl::phaser::PhaserResult& e = r.estimate;
+      const pcl::phaser::StageTimes& times = e.diagnostics.times;
+      std::printf("| %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s "
+                  "| %d |\n",
+                  threads, cached ? "cached" : "fresh", cell(r.total).c_str(),
+                  cell(r.first).c_str(), cell(times.target).c_str(),
+                  cell(times.sampling).c_str(), cell(times.sht).c_str(),
+                  cell(times.so3).c_str(), cell(times.refinement).c_str(),
+                  cell(times.translation).c_str(), cell(times.orientation).c_str(),
+                  cell(times.verification).c_str(),
+                  cell(r.total - times.total()).c_str(), e.diagnostics.passes);
+      std::fflush(stdout);
+    }
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -381,30 +414,6 @@ int main(int argc, char** argv)
     compareTilt(source, target, reps, params, range_only, unit);
     return 0;
   }
-  std::printf("| threads | target | total | first | target prep | sampling | SHT "
-              "| SO(3) corr | refinement | translation | orientation | verification "
-              "| other | passes |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  const auto cell = [unit](double ms) {
-    char text[48];
-    std::snprintf(text, sizeof(text), "%.1f / %.2f", ms, ms / unit);
-    return std::string(text);
-  };
-  for (int threads : {1, 2})
-    for (bool cached : {false, true}) {
-      const Row r = measure(source, target, threads, cached, reps, params, range_only);
-      const pcl::phaser::PhaserResult& e = r.estimate;
-      const pcl::phaser::StageTimes& times = e.diagnostics.times;
-      std::printf("| %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s "
-                  "| %d |\n",
-                  threads, cached ? "cached" : "fresh", cell(r.total).c_str(),
-                  cell(r.first).c_str(), cell(times.target).c_str(),
-                  cell(times.sampling).c_str(), cell(times.sht).c_str(),
-                  cell(times.so3).c_str(), cell(times.refinement).c_str(),
-                  cell(times.translation).c_str(), cell(times.orientation).c_str(),
-                  cell(times.verification).c_str(),
-                  cell(r.total - times.total()).c_str(), e.diagnostics.passes);
-      std::fflush(stdout);
-    }
+  printStageTable(source, target, reps, params, range_only, unit);
   return 0;
 }

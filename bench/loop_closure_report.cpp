@@ -194,6 +194,50 @@ void removeDrift(const Eigen::Vector3d& drift, const std::vector<std::string>& n
 
 } // namespace
 
+namespace {
+
+/** Every record judged against the reference poses; each row into \a csv_path too
+ *  when given. */
+std::vector<Row> judgeRecords(const std::vector<batch::Record>& records,
+                              const std::vector<std::string>& names,
+                              const std::vector<std::string>& paths,
+                              const std::vector<Eigen::Matrix4d>& poses,
+                              const char* csv_path)
+{
+  std::map<std::string, Cloud::Ptr> clouds;
+  std::vector<Row> rows;
+  FILE* csv = csv_path ? std::fopen(csv_path, "w") : nullptr;
+  if (csv)
+    std::fprintf(csv,
+                 "pair,source,target,distance_m,overlap,converged,rre_deg,rte_m,nees,"
+                 "nees_rot,nees_trans,sigma_rot_deg,sigma_trans_m\n");
+  for (const batch::Record& r : records) {
+    Row w;
+    w.pair = r["pair"].get<std::size_t>();
+    const int s = r["source_id"].get<int>(), t = r["target_id"].get<int>();
+    w.source = names.at(s);
+    w.target = names.at(t);
+    const Eigen::Matrix4d truth = poses[t].inverse() * poses[s];
+    w.distance = truth.topRightCorner<3, 1>().norm();
+    w.overlap = overlap(*load(paths[s], clouds), load(paths[t], clouds), truth);
+    w.ok = r.value("status", "") == "ok";
+    w.converged = r.value("converged", false);
+    if (w.ok)
+      judge(r, truth, w);
+    if (csv)
+      std::fprintf(csv, "%zu,%s,%s,%.3f,%.3f,%d,%.4f,%.4f,%.3f,%.3f,%.3f,%.4f,%.4f\n",
+                   w.pair, w.source.c_str(), w.target.c_str(), w.distance, w.overlap,
+                   int(w.converged), w.rre, w.rte, w.nees, w.nees_rot, w.nees_trans,
+                   w.sigma_rot_deg, w.sigma_trans_m);
+    rows.push_back(w);
+  }
+  if (csv)
+    std::fclose(csv);
+  return rows;
+}
+
+} // namespace
+
 int main(int argc, char** argv)
 {
   if (argc == 2 && !std::strcmp(argv[1], "--yardstick"))
@@ -227,35 +271,7 @@ int main(int argc, char** argv)
     if (std::sscanf(text, "%lf,%lf,%lf", &drift.x(), &drift.y(), &drift.z()) != 3)
       return std::fprintf(stderr, "--reference-drift expects DX,DY,DZ\n"), 1;
   removeDrift(drift, names, poses);
-  std::map<std::string, Cloud::Ptr> clouds;
-  std::vector<Row> rows;
-  FILE* csv = csv_path ? std::fopen(csv_path, "w") : nullptr;
-  if (csv)
-    std::fprintf(csv,
-                 "pair,source,target,distance_m,overlap,converged,rre_deg,rte_m,nees,"
-                 "nees_rot,nees_trans,sigma_rot_deg,sigma_trans_m\n");
-  for (const batch::Record& r : records) {
-    Row w;
-    w.pair = r["pair"].get<std::size_t>();
-    const int s = r["source_id"].get<int>(), t = r["target_id"].get<int>();
-    w.source = names.at(s);
-    w.target = names.at(t);
-    const Eigen::Matrix4d truth = poses[t].inverse() * poses[s];
-    w.distance = truth.topRightCorner<3, 1>().norm();
-    w.overlap = overlap(*load(paths[s], clouds), load(paths[t], clouds), truth);
-    w.ok = r.value("status", "") == "ok";
-    w.converged = r.value("converged", false);
-    if (w.ok)
-      judge(r, truth, w);
-    if (csv)
-      std::fprintf(csv, "%zu,%s,%s,%.3f,%.3f,%d,%.4f,%.4f,%.3f,%.3f,%.3f,%.4f,%.4f\n",
-                   w.pair, w.source.c_str(), w.target.c_str(), w.distance, w.overlap,
-                   int(w.converged), w.rre, w.rte, w.nees, w.nees_rot, w.nees_trans,
-                   w.sigma_rot_deg, w.sigma_trans_m);
-    rows.push_back(w);
-  }
-  if (csv)
-    std::fclose(csv);
+  const std::vector<Row> rows = judgeRecords(records, names, paths, poses, csv_path);
   summarize(rows, real_overlap);
   return 0;
 }

@@ -148,7 +148,8 @@ void printHelp(const char* program)
       program, PCL_PHASER_DEFAULT_DATA_DIR);
 }
 
-bool parseOptions(int argc, char** argv, Options& o)
+/** The options of \a argv into \a o, "all" methods and "sweeps" conditions expanded. */
+void readOptions(int argc, char** argv, Options& o)
 {
   std::string scans, methods, conditions, bandwidths;
   console::parse_argument(argc, argv, "-study", o.study);
@@ -192,6 +193,11 @@ bool parseOptions(int argc, char** argv, Options& o)
     o.conditions = {"clean",        "noise:60",      "noise:50",     "noise:40",
                     "sparsity:0.5", "sparsity:0.25", "sparsity:0.1", "overlap:0.5",
                     "overlap:0.25", "overlap:0.1"};
+}
+
+bool parseOptions(int argc, char** argv, Options& o)
+{
+  readOptions(argc, argv, o);
   bool ok = true;
   auto fail = [&](const std::string& what) {
     console::print_error("Invalid option: %s\n", what.c_str());
@@ -422,6 +428,45 @@ void detection(const Options& o, const std::map<std::string, Cloud::Ptr>& scans,
 
 } // namespace
 
+/** The markdown summary of the study, the CSV and the plots \a o asks for. */
+void writeReports(const Options& o, const std::vector<Trial>& trials, int argc,
+                  char** argv)
+{
+  std::ofstream md_file;
+  if (!o.markdown.empty())
+    md_file.open(o.markdown);
+  std::ostream& md = o.markdown.empty() ? std::cout : md_file;
+  std::ostringstream command;
+  for (int i = 0; i < argc; ++i)
+    command << (i ? " " : "") << argv[i];
+  md << "Command: `" << command.str() << "`\n\n";
+  std::vector<Trial> random_trials, pair_trials;
+  for (const Trial& t : trials)
+    (t.sweep == "pair" ? pair_trials : random_trials).push_back(t);
+  if (o.study == "compare") {
+    md << "Random poses (success: RRE < " << o.rre_threshold << " deg and RTE < "
+       << o.rte_threshold << " m):\n\n";
+    writeSummary(md, random_trials, false);
+    if (!pair_trials.empty()) {
+      md << "\nReal pairs against their reference poses:\n\n";
+      writeSummary(md, pair_trials, true);
+    }
+  } else if (o.study == "nees") {
+    writeNeesSummary(md, trials);
+  } else {
+    writeSummary(md, trials, false);
+    md << "\n";
+    writeDetectionSummary(md, trials, {5, 10, 15, 20, 25, 30, 40, 60});
+  }
+  if (!o.csv.empty()) {
+    std::ofstream csv(o.csv);
+    writeCsv(csv, trials);
+  }
+  if (!o.plots.empty())
+    for (const std::string& png : writePlots(o.plots, random_trials))
+      console::print_info("wrote %s\n", png.c_str());
+}
+
 int main(int argc, char** argv)
 {
   if (isRevisitsStudy(argc, argv))
@@ -456,39 +501,6 @@ int main(int argc, char** argv)
     detection(o, scans, runner);
   }
   std::fprintf(stderr, "\n");
-
-  std::ofstream md_file;
-  if (!o.markdown.empty())
-    md_file.open(o.markdown);
-  std::ostream& md = o.markdown.empty() ? std::cout : md_file;
-  std::ostringstream command;
-  for (int i = 0; i < argc; ++i)
-    command << (i ? " " : "") << argv[i];
-  md << "Command: `" << command.str() << "`\n\n";
-  std::vector<Trial> random_trials, pair_trials;
-  for (const Trial& t : trials)
-    (t.sweep == "pair" ? pair_trials : random_trials).push_back(t);
-  if (o.study == "compare") {
-    md << "Random poses (success: RRE < " << o.rre_threshold << " deg and RTE < "
-       << o.rte_threshold << " m):\n\n";
-    writeSummary(md, random_trials, false);
-    if (!pair_trials.empty()) {
-      md << "\nReal pairs against their reference poses:\n\n";
-      writeSummary(md, pair_trials, true);
-    }
-  } else if (o.study == "nees") {
-    writeNeesSummary(md, trials);
-  } else {
-    writeSummary(md, trials, false);
-    md << "\n";
-    writeDetectionSummary(md, trials, {5, 10, 15, 20, 25, 30, 40, 60});
-  }
-  if (!o.csv.empty()) {
-    std::ofstream csv(o.csv);
-    writeCsv(csv, trials);
-  }
-  if (!o.plots.empty())
-    for (const std::string& png : writePlots(o.plots, random_trials))
-      console::print_info("wrote %s\n", png.c_str());
+  writeReports(o, trials, argc, argv);
   return 0;
 }

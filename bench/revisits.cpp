@@ -422,6 +422,23 @@ void printRevisitsHelp(const char* program)
       program, kFolder, PCL_PHASER_DEFAULT_DATA_DIR, kFolder, kFolder);
 }
 
+namespace {
+
+/** The trials' CSV with its header, or null without \a path. */
+std::unique_ptr<std::ofstream> openCsv(const std::string& path)
+{
+  if (path.empty())
+    return nullptr;
+  auto csv = std::make_unique<std::ofstream>(path);
+  *csv << "method,source,target,dist,rel_rot,overlap,rre,rte,converged,ms,score,"
+          "overlap_est,inliers,free_space,reverse_free_space,constraint,rank,"
+          "runner_up_rank,runner_up_error,nees,nees_rot,nees_trans,sigma_rot_deg,"
+          "sigma_trans_m\n";
+  return csv;
+}
+
+} // namespace
+
 int runRevisitsStudy(int argc, char** argv)
 {
   if (console::find_switch(argc, argv, "-h") ||
@@ -465,14 +482,7 @@ int runRevisitsStudy(int argc, char** argv)
   const double fft_ms = fftYardstickMs();
   std::fprintf(stderr, "revisits: %zu pairs x %zu methods; yardstick FFT128 %.2f ms\n",
                pairs.size(), o.methods.size(), fft_ms);
-  std::unique_ptr<std::ofstream> csv;
-  if (!o.csv.empty()) {
-    csv = std::make_unique<std::ofstream>(o.csv);
-    *csv << "method,source,target,dist,rel_rot,overlap,rre,rte,converged,ms,score,"
-            "overlap_est,inliers,free_space,reverse_free_space,constraint,rank,"
-            "runner_up_rank,runner_up_error,nees,nees_rot,nees_trans,sigma_rot_deg,"
-            "sigma_trans_m\n";
-  }
+  const std::unique_ptr<std::ofstream> csv = openCsv(o.csv);
   const std::vector<RevisitTrial> trials = runTrials(o, folder, pairs, csv.get());
   std::ofstream md_file;
   if (!o.markdown.empty())

@@ -12,10 +12,11 @@
  * when the truth is known (--gt, the demo), the rotation and translation errors; can
  * write the aligned source (-o), a red/green overlay (-m) and a PNG of it
  * (--screenshot), or print one JSON object (--json). Options and exit codes:
- * printHelp(). Helpers: pcl_phaser_align_{options,steps,json}.h and
+ * printHelp(). Helpers: pcl_phaser_align_{options,steps,json,help}.h and
  * pcl_phaser_align_screenshot.{h,cpp}.
  */
 #include "cloud_reading.h"
+#include "pcl_phaser_align_help.h"
 #include "pcl_phaser_align_json.h"
 #include "pcl_phaser_align_options.h"
 #include "pcl_phaser_align_screenshot.h"
@@ -56,80 +57,6 @@ struct Result {
   }
 };
 
-void printHelp(int, char** argv)
-{
-  const pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> d; // the class defaults
-  print_error("Syntax is: %s SOURCE TARGET <options>\n"
-              "       or: %s [--demo] <options>\n",
-              argv[0], argv[0]);
-  print_info(
-      "  Registers SOURCE onto TARGET (.pcd, .ply or KITTI .bin) with PHASER and "
-      "prints\n  T_target_source (p_target = T * p_source). Options:\n"
-      "    -b, --bandwidth B   = spherical bandwidth, %s (default: %d)\n"
-      "    --grid N            = translation grid voxels along the longest axis, "
-      "%s (default: %d)\n"
-      "    --passes K          = registration passes, %s (default: %d)\n"
-      "    --center MODE       = projection center: sensor (each cloud's origin, for "
-      "LiDAR scans), centroid, or auto (sensor for scans seen from their origin) "
-      "(default: auto)\n"
-      "    --region X,Y,Z,R    = position prior: the source's sensor is within R m of "
-      "(X, Y, Z) in the target's frame;\n"
-      "                          only target points a sensor there could see are used "
-      "and no pose outside is returned\n"
-      "    --max-tilt DEG      = gravity prior: both clouds z-up (after the guess) up "
-      "to "
-      "DEG; only rotations tilting\n"
-      "                          the source less are searched, a result beyond is not "
-      "converged; %s, 0: off (default: 0)\n"
-      "    --threads T         = worker threads, %s, 0: one per hardware thread "
-      "(default: 0, here %u; the demo: %d)\n"
-      "    --print-parameters  = print the range of every setting as a Markdown "
-      "table\n",
-      rangeOf("bandwidth").c_str(), d.getBandwidth(),
-      rangeOf("spatial_grid_size").c_str(), d.getParameters().spatial_grid_size,
-      rangeOf("passes").c_str(), d.getParameters().passes,
-      rangeOf("max_tilt_deg").c_str(), rangeOf("num_threads").c_str(),
-      static_cast<unsigned>(pcl::phaser::resolveThreadCount(0)), default_demo_threads);
-  print_info(
-      "    -icp                = refine with point-to-plane ICP "
-      "(pcl::IterativeClosestPointWithNormals, normals\n"
-      "                          from %d neighbors) from the PHASER estimate: %d "
-      "iterations, transformation epsilon %g, on both clouds\n"
-      "                          reduced to one point per voxel of a quarter of "
-      "--icp-dist\n"
-      "    --icp-point         = with -icp: plain point-to-point "
-      "pcl::IterativeClosestPoint instead\n"
-      "    --icp-dist D        = ICP max correspondence distance in m (default: %g)\n"
-      "    -o FILE             = save SOURCE moved by the final transform, all fields "
-      "kept (.pcd/.ply/.bin)\n"
-      "    -m FILE             = save the overlay, aligned source red + target green "
-      "(PointXYZRGB, .pcd/.ply); view: pcl_viewer FILE\n"
-      "    --screenshot F.png  = render the overlay top-down to a PNG; needs X, e.g. "
-      "xvfb-run -a -s \"-screen 0 1280x1024x24\" ...\n"
-      "    --size WxH          = screenshot size in pixels, 16..8192 (default: %dx%d)\n"
-      "    --gt FILE           = the true T_target_source (4x4 or 3x4 text): report "
-      "RRE (deg) and RTE (m)\n"
-      "    --json              = print one JSON object on stdout, everything else on "
-      "stderr\n",
-      icp_normal_neighbors, icp_iterations, icp_transformation_epsilon,
-      default_icp_distance, default_width, default_height);
-  print_info(
-      "    --demo              = the embedded demo, also run with no arguments: a "
-      "simulated LiDAR pair, -icp,\n"
-      "                          errors against the truth, overlay in ./%s (or -m). "
-      "It fails (exit 4)\n"
-      "                          unless PHASER is within %g deg / %g m and ICP within "
-      "%g deg / %g m of the truth\n"
-      "    --seed S            = demo seed, 0..%d (default: %d)\n"
-      "    -h, --help          = this help\n"
-      "  Exit codes: 0 success, 1 usage or bad option, 2 bad input file (cloud or "
-      "--gt), 3 not converged (nothing is\n"
-      "  written), 4 demo outside its bounds, 5 output not written (also: no X "
-      "display for --screenshot).\n",
-      default_demo_overlay, demo_rre_deg, demo_rte_m, demo_icp_rre_deg, demo_icp_rte_m,
-      INT_MAX, default_seed);
-}
-
 // ---- load, register, refine -------------------------------------------------------
 
 bool loadCloud(const std::string& path, pcl::PCLPointCloud2& cloud)
@@ -161,21 +88,10 @@ bool loadCloud(const std::string& path, pcl::PCLPointCloud2& cloud)
   return (true);
 }
 
-template <typename PointT>
-int compute(const pcl::PCLPointCloud2& source_blob,
-            const pcl::PCLPointCloud2& target_blob, const Options& opt, Result& res)
+/** \a params with the options the command line set. */
+pcl::phaser::PhaserParameters withOptions(pcl::phaser::PhaserParameters params,
+                                          const Options& opt)
 {
-  using Cloud = pcl::PointCloud<PointT>;
-  const typename Cloud::Ptr source = align::toFiniteCloud<PointT>(source_blob);
-  const typename Cloud::Ptr target = align::toFiniteCloud<PointT>(target_blob);
-  if (source->empty() || target->empty())
-    return (fail(kInput, "The %s cloud has no finite points.",
-                 source->empty() ? "source" : "target"));
-  res.source_points = source->size();
-  res.target_points = target->size();
-
-  pcl::PhaserRegistration<PointT, PointT> phaser;
-  pcl::phaser::PhaserParameters params = phaser.getParameters();
   if (opt.bandwidth)
     params.bandwidth = opt.bandwidth;
   if (opt.grid)
@@ -193,6 +109,18 @@ int compute(const pcl::PCLPointCloud2& source_blob,
   params.region_z = opt.region[2];
   params.region_radius = opt.region[3];
   params.max_tilt_deg = opt.max_tilt;
+  return params;
+}
+
+/** The global registration of \a source onto \a target into \a res.global and
+ *  res.estimate. */
+template <typename PointT>
+void registerGlobally(pcl::PhaserRegistration<PointT, PointT>& phaser,
+                      const typename pcl::PointCloud<PointT>::Ptr& source,
+                      const typename pcl::PointCloud<PointT>::Ptr& target,
+                      const Options& opt, Result& res)
+{
+  const pcl::phaser::PhaserParameters params = withOptions(phaser.getParameters(), opt);
   phaser.setParameters(params);
   phaser.setInputSource(source);
   phaser.setInputTarget(target);
@@ -209,7 +137,7 @@ int compute(const pcl::PCLPointCloud2& source_blob,
     print_info("with a max tilt %g deg ", params.max_tilt_deg);
   TicToc tt;
   tt.tic();
-  Cloud aligned;
+  pcl::PointCloud<PointT> aligned;
   phaser.align(aligned);
   res.global.time_ms = tt.toc();
   res.global.ran = true;
@@ -219,6 +147,40 @@ int compute(const pcl::PCLPointCloud2& source_blob,
   print_info("[done, ");
   print_value("%g", res.global.time_ms);
   print_info(" ms : %s]\n", res.global.converged ? "converged" : "NOT converged");
+}
+
+/** The finite source points moved by the final transform in red, the target in green.
+ */
+template <typename PointT>
+pcl::PointCloud<pcl::PointXYZRGB>::Ptr overlayOf(const pcl::PointCloud<PointT>& source,
+                                                 const pcl::PointCloud<PointT>& target,
+                                                 const Eigen::Matrix4d& T)
+{
+  pcl::PointCloud<PointT> moved;
+  pcl::transformPointCloud(source, moved, T);
+  auto overlay = pcl::make_shared<pcl::PointCloud<pcl::PointXYZRGB>>();
+  overlay->reserve(moved.size() + target.size());
+  for (const PointT& p : moved)
+    overlay->push_back(pcl::PointXYZRGB(p.x, p.y, p.z, 255, 0, 0));
+  for (const PointT& p : target)
+    overlay->push_back(pcl::PointXYZRGB(p.x, p.y, p.z, 0, 160, 0));
+  return overlay;
+}
+
+template <typename PointT>
+int compute(const pcl::PCLPointCloud2& source_blob,
+            const pcl::PCLPointCloud2& target_blob, const Options& opt, Result& res)
+{
+  using Cloud = pcl::PointCloud<PointT>;
+  const typename Cloud::Ptr source = align::toFiniteCloud<PointT>(source_blob);
+  const typename Cloud::Ptr target = align::toFiniteCloud<PointT>(target_blob);
+  if (source->empty() || target->empty())
+    return (fail(kInput, "The %s cloud has no finite points.",
+                 source->empty() ? "source" : "target"));
+  res.source_points = source->size();
+  res.target_points = target->size();
+  pcl::PhaserRegistration<PointT, PointT> phaser;
+  registerGlobally<PointT>(phaser, source, target, opt, res);
   if (opt.icp && res.global.converged) {
     print_highlight("Refining with %s ICP ",
                     opt.icp_point ? "point-to-point" : "point-to-plane");
@@ -235,16 +197,7 @@ int compute(const pcl::PCLPointCloud2& source_blob,
     print_value("%g", res.icp.time_ms);
     print_info(" ms : %s]\n", res.icp.converged ? "converged" : "NOT converged");
   }
-  // The overlay: finite source points moved by the final transform in red, the target
-  // in green.
-  Cloud moved;
-  pcl::transformPointCloud(*source, moved, res.final());
-  res.overlay = pcl::make_shared<pcl::PointCloud<pcl::PointXYZRGB>>();
-  res.overlay->reserve(moved.size() + target->size());
-  for (const PointT& p : moved)
-    res.overlay->push_back(pcl::PointXYZRGB(p.x, p.y, p.z, 255, 0, 0));
-  for (const PointT& p : *target)
-    res.overlay->push_back(pcl::PointXYZRGB(p.x, p.y, p.z, 0, 160, 0));
+  res.overlay = overlayOf(*source, *target, res.final());
   return (kOk);
 }
 
@@ -379,34 +332,64 @@ int saveOutputs(const Options& opt, pcl::PCLPointCloud2& source_blob, const Resu
   return (kOk);
 }
 
+/** The demo pair of \a opt.seed into \a source, \a target and \a truth. */
+int simulateDemo(const Options& opt, pcl::PCLPointCloud2& source,
+                 pcl::PCLPointCloud2& target, Eigen::Matrix4d& truth)
+{
+  TicToc tt;
+  tt.tic();
+  print_highlight("Demo: ");
+  print_info("simulating a LiDAR pair, seed %d ", opt.seed);
+  try {
+    const pcl::phaser::ScanPair pair =
+        pcl::phaser::makeDemoPair(static_cast<unsigned>(opt.seed));
+    pcl::toPCLPointCloud2(pair.source, source);
+    pcl::toPCLPointCloud2(pair.target, target);
+    truth = pair.T_target_source;
+  } catch (const std::exception& e) {
+    print_info("[failed]\n");
+    return (fail(kInput, "The demo simulation failed: %s", e.what()));
+  }
+  print_info("[done, ");
+  print_value("%g", tt.toc());
+  print_info(" ms : %u + %u points; truth: %.1f deg, %.2f m]\n", source.width,
+             target.width,
+             Eigen::AngleAxisd(truth.topLeftCorner<3, 3>()).angle() * 180.0 / kPi,
+             truth.topRightCorner<3, 1>().norm());
+  return (kOk);
+}
+
+/** kOk when the demo's errors are within its bounds, else kDemoMissed (printed). */
+int checkDemo(const Result& res)
+{
+  const bool global_ok =
+      res.global.rre_deg <= demo_rre_deg && res.global.rte_m <= demo_rte_m;
+  const bool icp_ok =
+      res.icp.rre_deg <= demo_icp_rre_deg && res.icp.rte_m <= demo_icp_rte_m;
+  if (!global_ok || !icp_ok)
+    return (fail(kDemoMissed,
+                 "Demo FAILED: %s is %.3g deg / %.3g m from the truth; the bound is %g "
+                 "deg / %g m.",
+                 global_ok ? "ICP" : "PHASER",
+                 global_ok ? res.icp.rre_deg : res.global.rre_deg,
+                 global_ok ? res.icp.rte_m : res.global.rte_m,
+                 global_ok ? demo_icp_rre_deg : demo_rre_deg,
+                 global_ok ? demo_icp_rte_m : demo_rte_m));
+  print_highlight("Demo passed: ");
+  print_info("PHASER within %g deg / %g m and ICP within %g deg / %g m of the truth.\n",
+             demo_rre_deg, demo_rte_m, demo_icp_rre_deg, demo_icp_rte_m);
+  return (kOk);
+}
+
 int run(const Options& opt, Result& res)
 {
   pcl::PCLPointCloud2 source, target;
   Eigen::Matrix4d truth = Eigen::Matrix4d::Identity();
-  bool has_truth = false;
+  bool has_truth = opt.demo;
   std::string error;
   if (opt.demo) {
-    TicToc tt;
-    tt.tic();
-    print_highlight("Demo: ");
-    print_info("simulating a LiDAR pair, seed %d ", opt.seed);
-    try {
-      const pcl::phaser::ScanPair pair =
-          pcl::phaser::makeDemoPair(static_cast<unsigned>(opt.seed));
-      pcl::toPCLPointCloud2(pair.source, source);
-      pcl::toPCLPointCloud2(pair.target, target);
-      truth = pair.T_target_source;
-    } catch (const std::exception& e) {
-      print_info("[failed]\n");
-      return (fail(kInput, "The demo simulation failed: %s", e.what()));
-    }
-    has_truth = true;
-    print_info("[done, ");
-    print_value("%g", tt.toc());
-    print_info(" ms : %u + %u points; truth: %.1f deg, %.2f m]\n", source.width,
-               target.width,
-               Eigen::AngleAxisd(truth.topLeftCorner<3, 3>()).angle() * 180.0 / kPi,
-               truth.topRightCorner<3, 1>().norm());
+    if (const int rc = simulateDemo(opt, source, target, truth))
+      return (rc);
   } else {
     if (!opt.gt.empty() && !pcl::phaser::loadTransform(opt.gt, truth, &error))
       return (fail(kInput, "Cannot use --gt: %s", error.c_str()));
@@ -430,26 +413,8 @@ int run(const Options& opt, Result& res)
                  res.global.converged ? "ICP" : "PHASER"));
   if (const int rc = saveOutputs(opt, source, res))
     return (rc);
-  if (opt.demo) {
-    const bool global_ok =
-        res.global.rre_deg <= demo_rre_deg && res.global.rte_m <= demo_rte_m;
-    const bool icp_ok =
-        res.icp.rre_deg <= demo_icp_rre_deg && res.icp.rte_m <= demo_icp_rte_m;
-    if (!global_ok || !icp_ok)
-      return (
-          fail(kDemoMissed,
-               "Demo FAILED: %s is %.3g deg / %.3g m from the truth; the bound is %g "
-               "deg / %g m.",
-               global_ok ? "ICP" : "PHASER",
-               global_ok ? res.icp.rre_deg : res.global.rre_deg,
-               global_ok ? res.icp.rte_m : res.global.rte_m,
-               global_ok ? demo_icp_rre_deg : demo_rre_deg,
-               global_ok ? demo_icp_rte_m : demo_rte_m));
-    print_highlight("Demo passed: ");
-    print_info(
-        "PHASER within %g deg / %g m and ICP within %g deg / %g m of the truth.\n",
-        demo_rre_deg, demo_rte_m, demo_icp_rre_deg, demo_icp_rte_m);
-  }
+  if (opt.demo)
+    return (checkDemo(res));
   return (kOk);
 }
 
@@ -458,7 +423,7 @@ int run(const Options& opt, Result& res)
 int main(int argc, char** argv)
 {
   if (find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
-    printHelp(argc, argv);
+    printHelp(argv[0]);
     return (kOk);
   }
   if (find_switch(argc, argv, "--print-parameters")) {

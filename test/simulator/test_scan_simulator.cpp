@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Copyright (c) 2026, the pcl_phaser developers.
 //
-// Tests of the LiDAR scan simulator (tools/scan_simulator.h): determinism, sensor
+// Tests of the LiDAR scan simulator (simulator/scan_simulator.h): determinism, sensor
 // geometry, analytic hits and the ground truth of the demo pair.
 #include "scan_simulator.h"
 

@@ -5,7 +5,7 @@
  * End-to-end tests of the pcl_phaser_align tool: the built binary (compile definition
  * PCL_PHASER_ALIGN_BIN) is run through std::system, and its exit code, its output and
  * the files it writes are checked. Inputs are simulated scans written to a temporary
- * directory (tools/scan_simulator.h), plus the shared real scans when present.
+ * directory (simulator/scan_simulator.h), plus the shared real scans when present.
  */
 #include "../registration/test_data.h"
 #include "cloud_reading.h"

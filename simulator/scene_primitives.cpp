@@ -388,19 +388,12 @@ double groundReflectivity(double x, double y)
   return 0.24 + 0.06 * std::sin(0.31 * x + 0.7) * std::cos(0.23 * y - 0.4);
 }
 
-std::vector<ScenePrimitive> generateScene(const SceneParameters& params)
-{
-  if (params.buildings < 0 || params.poles < 0 || params.trees < 0 ||
-      params.bushes < 0 || params.cars < 0 || params.walls < 0)
-    throw std::invalid_argument("generateScene: object counts must be >= 0");
-  if (!(params.extent > 2.0 * params.clear_radius + 20.0) || params.clear_radius < 0.0)
-    throw std::invalid_argument(
-        "generateScene: extent must exceed 2 * clear_radius + 20 m, clear_radius >= 0");
-  Draw draw(params.seed);
-  Layout layout(0.5 * params.extent, params.clear_radius);
-  std::vector<ScenePrimitive> out;
-  addBuildings(params, draw, layout, out);
+namespace {
 
+/** Walls, cars and poles, in that order of draws. */
+void addStreetFurniture(const SceneParameters& params, Draw& draw, Layout& layout,
+                        std::vector<ScenePrimitive>& out)
+{
   double x = 0.0, y = 0.0, yaw = 0.0;
   for (int i = 0; i < params.walls; ++i) {
     const double half_length = draw.uniform(4.0, 15.0);
@@ -430,6 +423,13 @@ std::vector<ScenePrimitive> generateScene(const SceneParameters& params)
     layout.add(x, y, radius);
     out.push_back(makeCylinder(x, y, 0.0, height, radius, reflectivity));
   }
+}
+
+/** Trees and bushes, in that order of draws. */
+void addVegetation(const SceneParameters& params, Draw& draw, Layout& layout,
+                   std::vector<ScenePrimitive>& out)
+{
+  double x = 0.0, y = 0.0, yaw = 0.0;
   for (int i = 0; i < params.trees; ++i) {
     const double trunk_radius = draw.uniform(0.15, 0.35);
     const double trunk_height = draw.uniform(2.0, 4.5);
@@ -456,6 +456,25 @@ std::vector<ScenePrimitive> generateScene(const SceneParameters& params)
     layout.add(x, y, radius);
     out.push_back(makeEllipsoid({x, y, center_z}, axes, yaw, reflectivity));
   }
+}
+
+} // namespace
+
+std::vector<ScenePrimitive> generateScene(const SceneParameters& params)
+{
+  if (params.buildings < 0 || params.poles < 0 || params.trees < 0 ||
+      params.bushes < 0 || params.cars < 0 || params.walls < 0)
+    throw std::invalid_argument("generateScene: object counts must be >= 0");
+  if (!(params.extent > 2.0 * params.clear_radius + 20.0) || params.clear_radius < 0.0)
+    throw std::invalid_argument(
+        "generateScene: extent must exceed 2 * clear_radius + 20 m, clear_radius >= 0");
+  Draw draw(params.seed);
+  Layout layout(0.5 * params.extent, params.clear_radius);
+  std::vector<ScenePrimitive> out;
+  addBuildings(params, draw, layout, out);
+
+  addStreetFurniture(params, draw, layout, out);
+  addVegetation(params, draw, layout, out);
   return out;
 }
 

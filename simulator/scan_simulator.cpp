@@ -30,6 +30,27 @@ struct Return {
   bool valid;
 };
 
+/** \brief The valid returns, in buffer order, as a dense unorganized cloud. */
+pcl::PointCloud<pcl::PointXYZI> cloudOf(const std::vector<Return>& returns)
+{
+  pcl::PointCloud<pcl::PointXYZI> cloud;
+  cloud.reserve(returns.size());
+  for (const Return& r : returns) {
+    if (!r.valid)
+      continue;
+    pcl::PointXYZI point;
+    point.x = r.x;
+    point.y = r.y;
+    point.z = r.z;
+    point.intensity = r.intensity;
+    cloud.push_back(point);
+  }
+  cloud.width = static_cast<std::uint32_t>(cloud.size());
+  cloud.height = 1;
+  cloud.is_dense = true;
+  return cloud;
+}
+
 void validate(const LidarParameters& lidar)
 {
   if (lidar.beams < 1)
@@ -295,22 +316,7 @@ SimulatedScene::scan(const Eigen::Isometry3d& sensor_pose_in_world,
     }
   }
 
-  pcl::PointCloud<pcl::PointXYZI> cloud;
-  cloud.reserve(returns.size());
-  for (const Return& r : returns) {
-    if (!r.valid)
-      continue;
-    pcl::PointXYZI point;
-    point.x = r.x;
-    point.y = r.y;
-    point.z = r.z;
-    point.intensity = r.intensity;
-    cloud.push_back(point);
-  }
-  cloud.width = static_cast<std::uint32_t>(cloud.size());
-  cloud.height = 1;
-  cloud.is_dense = true;
-  return cloud;
+  return cloudOf(returns);
 }
 
 bool SimulatedScene::isFree(const Eigen::Vector3d& position, double clearance) const

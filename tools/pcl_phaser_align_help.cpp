@@ -1,0 +1,109 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright (c) 2026, the pcl_phaser developers.
+//
+// pcl_phaser_align's help text, its defaults and ranges read from the code.
+#include "pcl_phaser_align_help.h"
+#include "pcl_phaser_align_options.h"
+
+#include <pcl_phaser/phaser_registration.h>
+
+#include <pcl/console/print.h>
+
+#include <climits>
+
+using namespace pcl::console;
+using namespace pcl::phaser::align_tool;
+
+namespace {
+
+/** The registration options of the help, with the class defaults. */
+void printRegistrationHelp()
+{
+  const pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> d; // the class defaults
+  print_info(
+      "  Registers SOURCE onto TARGET (.pcd, .ply or KITTI .bin) with PHASER and "
+      "prints\n  T_target_source (p_target = T * p_source). Options:\n"
+      "    -b, --bandwidth B   = spherical bandwidth, %s (default: %d)\n"
+      "    --grid N            = translation grid voxels along the longest axis, "
+      "%s (default: %d)\n"
+      "    --passes K          = registration passes, %s (default: %d)\n"
+      "    --center MODE       = projection center: sensor (each cloud's origin, for "
+      "LiDAR scans), centroid, or auto (sensor for scans seen from their origin) "
+      "(default: auto)\n"
+      "    --region X,Y,Z,R    = position prior: the source's sensor is within R m of "
+      "(X, Y, Z) in the target's frame;\n"
+      "                          only target points a sensor there could see are used "
+      "and no pose outside is returned\n"
+      "    --max-tilt DEG      = gravity prior: both clouds z-up (after the guess) up "
+      "to "
+      "DEG; only rotations tilting\n"
+      "                          the source less are searched, a result beyond is not "
+      "converged; %s, 0: off (default: 0)\n"
+      "    --threads T         = worker threads, %s, 0: one per hardware thread "
+      "(default: 0, here %u; the demo: %d)\n"
+      "    --print-parameters  = print the range of every setting as a Markdown "
+      "table\n",
+      rangeOf("bandwidth").c_str(), d.getBandwidth(),
+      rangeOf("spatial_grid_size").c_str(), d.getParameters().spatial_grid_size,
+      rangeOf("passes").c_str(), d.getParameters().passes,
+      rangeOf("max_tilt_deg").c_str(), rangeOf("num_threads").c_str(),
+      static_cast<unsigned>(pcl::phaser::resolveThreadCount(0)), default_demo_threads);
+}
+
+/** The ICP and output options of the help. */
+void printOutputHelp()
+{
+  print_info(
+      "    -icp                = refine with point-to-plane ICP "
+      "(pcl::IterativeClosestPointWithNormals, normals\n"
+      "                          from %d neighbors) from the PHASER estimate: %d "
+      "iterations, transformation epsilon %g, on both clouds\n"
+      "                          reduced to one point per voxel of a quarter of "
+      "--icp-dist\n"
+      "    --icp-point         = with -icp: plain point-to-point "
+      "pcl::IterativeClosestPoint instead\n"
+      "    --icp-dist D        = ICP max correspondence distance in m (default: %g)\n"
+      "    -o FILE             = save SOURCE moved by the final transform, all fields "
+      "kept (.pcd/.ply/.bin)\n"
+      "    -m FILE             = save the overlay, aligned source red + target green "
+      "(PointXYZRGB, .pcd/.ply); view: pcl_viewer FILE\n"
+      "    --screenshot F.png  = render the overlay top-down to a PNG; needs X, e.g. "
+      "xvfb-run -a -s \"-screen 0 1280x1024x24\" ...\n"
+      "    --size WxH          = screenshot size in pixels, 16..8192 (default: %dx%d)\n"
+      "    --gt FILE           = the true T_target_source (4x4 or 3x4 text): report "
+      "RRE (deg) and RTE (m)\n"
+      "    --json              = print one JSON object on stdout, everything else on "
+      "stderr\n",
+      icp_normal_neighbors, icp_iterations, icp_transformation_epsilon,
+      default_icp_distance, default_width, default_height);
+}
+
+} // namespace
+
+namespace pcl::phaser::align_tool {
+
+void printHelp(const char* program)
+{
+  print_error("Syntax is: %s SOURCE TARGET <options>\n"
+              "       or: %s [--demo] <options>\n",
+              program, program);
+  printRegistrationHelp();
+  printOutputHelp();
+  print_info(
+      "    --demo              = the embedded demo, also run with no arguments: a "
+      "simulated LiDAR pair, -icp,\n"
+      "                          errors against the truth, overlay in ./%s (or -m). "
+      "It fails (exit 4)\n"
+      "                          unless PHASER is within %g deg / %g m and ICP within "
+      "%g deg / %g m of the truth\n"
+      "    --seed S            = demo seed, 0..%d (default: %d)\n"
+      "    -h, --help          = this help\n"
+      "  Exit codes: 0 success, 1 usage or bad option, 2 bad input file (cloud or "
+      "--gt), 3 not converged (nothing is\n"
+      "  written), 4 demo outside its bounds, 5 output not written (also: no X "
+      "display for --screenshot).\n",
+      default_demo_overlay, demo_rre_deg, demo_rte_m, demo_icp_rre_deg, demo_icp_rte_m,
+      INT_MAX, default_seed);
+}
+
+} // namespace pcl::phaser::align_tool
