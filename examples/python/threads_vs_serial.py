@@ -5,10 +5,12 @@
 (one engine thread each): prints both wall times and their ratio, the median of --runs.
 
     PYTHONPATH=build/python python3 examples/python/threads_vs_serial.py \\
-        SOURCE.pcd TARGET.pcd [--runs 7]
+        SOURCE.pcd TARGET.pcd [--runs 7] [--layout f32x4|f32x3|f64x3|f32x3F]
 
 Reads binary PCD (x y z intensity first) or KITTI .bin; the second align is the pair
-swapped, so both threads have the same amount of work.
+swapped, so both threads have the same amount of work. --layout: the arrays handed to
+pcl_phaser, float32 (N, 4) as read (default), float32 or float64 (N, 3), or float32 (N, 3)
+in Fortran order.
 """
 import argparse
 import os
@@ -28,13 +30,23 @@ def timed(function):
     return time.perf_counter() - start
 
 
+def layout(cloud, kind):
+    """\a cloud (N, 4) float32 in the array layout \a kind."""
+    if kind == "f32x4":
+        return cloud
+    xyz = cloud[:, :3].astype(np.float64 if kind == "f64x3" else np.float32)
+    return np.asfortranarray(xyz) if kind == "f32x3F" else np.ascontiguousarray(xyz)
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("source")
     parser.add_argument("target")
     parser.add_argument("--runs", type=int, default=7)
+    parser.add_argument("--layout", default="f32x4",
+                        choices=["f32x4", "f32x3", "f64x3", "f32x3F"])
     args = parser.parse_args()
-    a, b = read_scan(args.source, ""), read_scan(args.target, "")
+    a, b = (layout(read_scan(path, ""), args.layout) for path in (args.source, args.target))
     params = pcl_phaser.Parameters(num_threads=1)
     jobs = [lambda: pcl_phaser.align(a, b, params=params),
             lambda: pcl_phaser.align(b, a, params=params)]
