@@ -134,14 +134,11 @@ void runQuery(const bench::PriorMap& m, const Target& map, const std::string& di
   const Timed pair = medianOf(runs, scan, query, params, same);
   const Eigen::Vector3d center =
       truth.topRightCorner<3, 1>() + Eigen::Vector3d(3, -4, 0);
-  params.region_x = center.x();
-  params.region_y = center.y();
-  params.region_z = center.z();
-  params.region_radius = radius;
+  params.region = pcl::phaser::Region{center.x(), center.y(), center.z(), radius};
   // A region moved by a millimeter per run: the map is cropped and prepared each time.
   const Timed fresh =
       medianOf(runs, map, query, params, [&](PhaserParameters& p, int k) {
-        p.region_x = center.x() + 1e-3 * (k + 1);
+        p.region->x = center.x() + 1e-3 * (k + 1);
       });
   const Timed cached = medianOf(runs, map, query, params, same);
   PhaserParameters whole;

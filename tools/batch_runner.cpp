@@ -64,9 +64,9 @@ std::string runFingerprint(const RunSettings& settings)
                 p.voxel_size, p.passes, centers[static_cast<int>(p.projection_center)]);
   std::string fingerprint = text;
   // The priors, only when set (records written without them keep their fingerprint).
-  if (p.region_radius > 0.0) {
-    std::snprintf(text, sizeof(text), ", region %.17g,%.17g,%.17g,%.17g", p.region_x,
-                  p.region_y, p.region_z, p.region_radius);
+  if (p.region) {
+    std::snprintf(text, sizeof(text), ", region %.17g,%.17g,%.17g,%.17g", p.region->x,
+                  p.region->y, p.region->z, p.region->radius);
     fingerprint += text;
   }
   if (p.max_tilt_deg > 0.0) {

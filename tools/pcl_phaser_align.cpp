@@ -104,10 +104,9 @@ pcl::phaser::PhaserParameters withOptions(pcl::phaser::PhaserParameters params,
   params.projection_center = opt.center == "centroid" ? Center::Centroid
                              : opt.center == "auto"   ? Center::Automatic
                                                       : Center::SensorOrigin;
-  params.region_x = opt.region[0];
-  params.region_y = opt.region[1];
-  params.region_z = opt.region[2];
-  params.region_radius = opt.region[3];
+  if (opt.region[3] > 0.0)
+    params.region =
+        pcl::phaser::Region{opt.region[0], opt.region[1], opt.region[2], opt.region[3]};
   params.max_tilt_deg = opt.max_tilt;
   return params;
 }

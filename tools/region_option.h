@@ -54,10 +54,7 @@ inline std::string regionUsage(const std::string& text)
 /** \brief Set the position prior of \a p to \a region (X, Y, Z, R). */
 inline void setRegion(PhaserParameters& p, const std::array<double, 4>& region)
 {
-  p.region_x = region[0];
-  p.region_y = region[1];
-  p.region_z = region[2];
-  p.region_radius = region[3];
+  p.region = Region{region[0], region[1], region[2], region[3]};
 }
 
 } // namespace phaser

@@ -111,10 +111,7 @@ bool setOther(PhaserParameters& p, const std::string& name, const py::handle& v)
 void assignField(PhaserParameters& p, const std::string& name, const py::handle& v)
 {
   if (const ParameterRange* r = findParameterRange(name)) {
-    if (r->integer)
-      p.*(r->integer) = toInteger(*r, v);
-    else
-      p.*(r->real) = toReal(r->name, v);
+    r->set(p, r->integer ? toInteger(*r, v) : toReal(r->name, v));
   } else if (!setOther(p, name, v)) {
     throw py::type_error("Parameters has no field '" + name + "'");
   }
@@ -133,7 +130,11 @@ void setField(PhaserParameters& p, const std::string& name, const py::handle& v)
 {
   PhaserParameters changed = p;
   assignField(changed, name, v);
-  validate(changed);
+  PhaserParameters checked = changed;
+  // A region's center may be set before its radius; align() refuses a radius of 0.
+  if (checked.region && checked.region->radius == 0.0)
+    checked.region->radius = 1.0;
+  validate(checked);
   p = changed;
 }
 
@@ -141,7 +142,7 @@ py::object getField(const PhaserParameters& p, const std::string& name)
 {
   if (const ParameterRange* r = findParameterRange(name))
     return r->integer ? py::object(py::int_(p.*(r->integer)))
-                      : py::object(py::float_(p.*(r->real)));
+                      : py::object(py::float_(r->value(p)));
   if (name == "normalized_refinement")
     return py::bool_(p.normalized_refinement);
   if (name == "projection_center")

@@ -5,6 +5,7 @@ C++ default, and values are validated as the engine validates them."""
 import math
 import pickle
 
+import numpy as np
 import pytest
 
 import pcl_phaser
@@ -80,3 +81,17 @@ def test_keywords_repr_equality_and_pickle():
     assert pickle.loads(pickle.dumps(p)) == p
     assert p != pcl_phaser.Parameters()
     assert p.to_dict()["bandwidth"] == 32
+
+
+def test_region_fields_make_the_position_prior_and_radius_zero_removes_it():
+    p = pcl_phaser.Parameters(region_x=1.0, region_y=2.0, region_radius=10.0)
+    assert (p.region_x, p.region_y, p.region_z, p.region_radius) == (1.0, 2.0, 0.0, 10.0)
+    assert pickle.loads(pickle.dumps(p)) == p
+    p.region_radius = 0.0  # no prior: the center goes with it
+    assert (p.region_x, p.region_y, p.region_radius) == (0.0, 0.0, 0.0)
+    assert p == pcl_phaser.Parameters()
+    p.region_x = 5.0  # a center may come before its radius; align() wants the radius
+    cloud = np.array([[x, y, 0.1 * x * y] for x in range(-5, 6) for y in range(-5, 6)])
+    assert "region_radius = 0 with a region" in pcl_phaser.align(cloud, cloud, params=p).error
+    with pytest.raises(ValueError, match="region_radius = 0 with a region"):
+        pcl_phaser.Parameters(region_x=5.0)

@@ -7,7 +7,7 @@
  */
 #include "point_test_support.h"
 #include "verification/pose_refinement.h"
-#include "verification/voxel_hash.h"
+#include "index/point_index.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

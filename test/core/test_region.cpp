@@ -2,12 +2,14 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * The position prior's pieces: the crop of the target, the bound on the translation
- * search and the guard on the answer.
+ * The priors' pieces: the crop of the target to a region, the bound on the translation
+ * search, and the guard on the answer (a region, a tilt cone).
  */
-#include "pipeline/region.h"
+#include "priors/allowed_poses.h"
+#include "priors/region.h"
 #include "support/error.h"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,7 +25,7 @@ TEST(Region, CropKeepsThePointsInReachRelativeToTheCenter)
     points.col(i) = Eigen::Vector3d(i, 0.0, 1.0); // x = 0 .. 299 m
     intensity(i) = i;
   }
-  Region region;
+  SearchRegion region;
   region.center = Eigen::Vector3d(100.0, 0.0, 1.0);
   region.radius = 10.0;
   region.reach = 60.0;
@@ -54,13 +56,12 @@ TEST(Region, ShiftsBeyondTheRadiusCannotPeak)
   EXPECT_EQ(peak.index, Eigen::Vector3i(15, 2, 1));
 }
 
-TEST(Region, AnAnswerOutsideFallsBackInsideAndDoesNotConverge)
+TEST(AllowedPoses, AnAnswerOutsideTheRegionFallsBackInsideAndDoesNotConverge)
 {
-  Region region;
-  region.center = Eigen::Vector3d(10.0, 0.0, 0.0);
-  region.radius = 5.0;
+  AllowedPoses allowed;
+  allowed.region = SearchRegion{Eigen::Vector3d(10.0, 0.0, 0.0), 5.0, 50.0};
   PhaserResult result;
-  result.converged = true;
+  result.converged = result.diagnostics.verified = true;
   result.transformation.topRightCorner<3, 1>() = Eigen::Vector3d(30.0, 0.0, 0.0);
   Hypothesis outside, inside, better_outside;
   outside.transformation.topRightCorner<3, 1>() = Eigen::Vector3d(30.0, 0.0, 0.0);
@@ -70,22 +71,62 @@ TEST(Region, AnAnswerOutsideFallsBackInsideAndDoesNotConverge)
   better_outside.transformation.topRightCorner<3, 1>() = Eigen::Vector3d(0.0, 0.0, 0.0);
   better_outside.verification.rank = 0.9;
   result.diagnostics.hypotheses = {outside, inside, better_outside};
-  confineToRegion(result, region);
+  keepAllowed(result, allowed);
   EXPECT_FALSE(result.converged);
+  EXPECT_FALSE(result.diagnostics.verified);
   EXPECT_EQ(result.chosen_hypothesis, 1);
   EXPECT_EQ(result.transformation, inside.transformation);
+  EXPECT_EQ(result.diagnostics.verification.rank, 0.1);
+  EXPECT_NE(result.diagnostics.refusal.find("20.00 m from the region's center"),
+            std::string::npos)
+      << result.diagnostics.refusal;
 
   result.diagnostics.hypotheses.clear(); // none inside: the nearest point of the region
   result.converged = true;
   result.transformation.topRightCorner<3, 1>() = Eigen::Vector3d(10.0, -20.0, 0.0);
-  confineToRegion(result, region);
+  keepAllowed(result, allowed);
   EXPECT_FALSE(result.converged);
   const Eigen::Vector3d moved = result.transformation.topRightCorner<3, 1>();
   EXPECT_TRUE(moved.isApprox(Eigen::Vector3d(10.0, -5.0, 0.0)));
 
   result.converged = true; // inside: untouched
-  confineToRegion(result, region);
+  result.diagnostics.refusal.clear();
+  keepAllowed(result, allowed);
   EXPECT_TRUE(result.converged);
+  EXPECT_TRUE(result.diagnostics.refusal.empty());
+}
+
+/** T with a rotation of \a deg about x after \a guess. */
+Eigen::Matrix4d tilted(double deg, const Eigen::Matrix4d& guess)
+{
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  T.topLeftCorner<3, 3>() =
+      Eigen::AngleAxisd(deg * M_PI / 180.0, Eigen::Vector3d::UnitX())
+          .toRotationMatrix();
+  return T * guess;
+}
+
+TEST(AllowedPoses, TiltIsMeasuredAfterTheGuessAndClampedIntoTheCone)
+{
+  Eigen::Matrix4d guess = Eigen::Matrix4d::Identity();
+  guess.topLeftCorner<3, 3>() =
+      Eigen::AngleAxisd(1.0, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  PhaserParameters params;
+  params.max_tilt_deg = 10.0;
+  const AllowedPoses allowed =
+      allowedPoses(params, Eigen::Matrix3Xd::Ones(3, 4), guess);
+  EXPECT_TRUE(allowed.refusal(tilted(9.0, guess)).empty());
+  EXPECT_TRUE(allowed.refusal(guess).empty()); // the guess's own tilt does not count
+  EXPECT_NE(allowed.refusal(tilted(30.0, guess)).find("tilts 30.0 deg"),
+            std::string::npos);
+  PhaserResult result;
+  result.converged = true;
+  result.transformation = tilted(30.0, guess);
+  keepAllowed(result, allowed); // no hypotheses: the tilt clamped to the cone
+  EXPECT_FALSE(result.converged);
+  const Eigen::Matrix3d R = result.transformation.topLeftCorner<3, 3>() *
+                            guess.topLeftCorner<3, 3>().transpose();
+  EXPECT_NEAR(std::acos(R(2, 2)) * 180.0 / M_PI, 10.0, 1e-9);
 }
 
 } // namespace

@@ -364,12 +364,12 @@ TEST(So3Correlation, TiltLimitedGridEqualsFullRows)
   EXPECT_THROW(corr->correlate(F, H, 1, -1), InvalidArgument);
 }
 
-TEST(So3Correlation, LimitedRowsKeepInConePeaks)
+namespace {
+
+/** The target (first) and source spectra at bandwidth \a B: the target holds the
+ *  source's lobes twice, rotated by a 5 deg tilt and, stronger, by a 70 deg tilt. */
+std::pair<SphericalSpectrum, SphericalSpectrum> twiceTiltedLobes(int B)
 {
-  // The target holds the source's lobes twice: rotated by R_in (5 deg tilt) and,
-  // stronger, by R_out (70 deg tilt). The global maximum lies outside a 20 deg cone;
-  // the lesser peaks inside it are what a gravity prior keeps.
-  const int B = 16;
   std::mt19937 rng(7);
   std::vector<Eigen::Vector3d> src, tgt;
   std::vector<double> w, wt;
@@ -389,10 +389,37 @@ TEST(So3Correlation, LimitedRowsKeepInConePeaks)
     wt.push_back(1.2 * w.back());
   }
   const auto sht = SphericalHarmonicTransform::instance(B);
-  const SphericalSpectrum F =
-      sht->forward(test::lobeSamples(B, tgt, wt, 0.6 * B).data());
-  const SphericalSpectrum H =
-      sht->forward(test::lobeSamples(B, src, w, 0.6 * B).data());
+  return {sht->forward(test::lobeSamples(B, tgt, wt, 0.6 * B).data()),
+          sht->forward(test::lobeSamples(B, src, w, 0.6 * B).data())};
+}
+
+/** The maxima of \a full in the first \a rows - 1 beta rows that no stronger kept
+ *  peak within 10 deg shadows, strongest first. */
+std::vector<So3GridIndex> unshadowedInCone(const So3CorrelationGrid& full, int rows,
+                                           int B)
+{
+  std::vector<So3GridIndex> in_cone;
+  for (const So3GridIndex& p : distinctPeaks(full, 100000, 0.0, 2)) {
+    bool shadowed = p.beta >= rows - 1;
+    const Eigen::Matrix3d R = rotationFromEuler(gridEuler(p, B));
+    for (const So3GridIndex& q : in_cone)
+      shadowed = shadowed ||
+                 rotationDistance(R, rotationFromEuler(gridEuler(q, B))) <= 10.0 * kDeg;
+    if (!shadowed)
+      in_cone.push_back(p);
+  }
+  return in_cone;
+}
+
+} // namespace
+
+TEST(So3Correlation, LimitedRowsKeepInConePeaks)
+{
+  // The target holds the source's lobes twice: rotated by R_in (5 deg tilt) and,
+  // stronger, by R_out (70 deg tilt). The global maximum lies outside a 20 deg cone;
+  // the lesser peaks inside it are what a gravity prior keeps.
+  const int B = 16;
+  const auto [F, H] = twiceTiltedLobes(B);
   const auto corr = So3Correlator::instance(B);
   const So3CorrelationGrid full = corr->correlate(F, H, 2);
   const int rows = betaRowsForTilt(B, 20.0 * kDeg);
@@ -420,17 +447,7 @@ TEST(So3Correlation, LimitedRowsKeepInConePeaks)
       EXPECT_LE(s.value, full(p) + 1e-12 * scale);
   }
   // The full grid's in-cone maxima that no stronger peak shadows are kept, in order.
-  const std::vector<So3GridIndex> all = distinctPeaks(full, 100000, 0.0, 2);
-  std::vector<So3GridIndex> in_cone;
-  for (const So3GridIndex& p : all) {
-    bool shadowed = p.beta >= rows - 1;
-    const Eigen::Matrix3d R = rotationFromEuler(gridEuler(p, B));
-    for (const So3GridIndex& q : in_cone)
-      shadowed = shadowed ||
-                 rotationDistance(R, rotationFromEuler(gridEuler(q, B))) <= 10.0 * kDeg;
-    if (!shadowed)
-      in_cone.push_back(p);
-  }
+  const std::vector<So3GridIndex> in_cone = unshadowedInCone(full, rows, B);
   ASSERT_GE(in_cone.size(), 1u);
   for (std::size_t k = 0; k < std::min(in_cone.size(), peaks.size()); ++k) {
     EXPECT_EQ(in_cone[k].beta, peaks[k].beta) << k;

@@ -6,7 +6,7 @@
 #include "spatial/spatial_correlation.h"
 #include "support/error.h"
 #include "verification/verification.h"
-#include "verification/voxel_hash.h"
+#include "index/point_index.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -200,14 +200,14 @@ TEST(VerifyPose, RightPoseVerifiesAndAShiftedOneDoesNot)
   const auto unweighted = [](const Eigen::Matrix3Xd& points) {
     return VerificationSamples{points, Eigen::VectorXd::Ones(points.cols()), {}};
   };
-  const PoseVerification right = verifyPose(index, unweighted(source), R, t);
+  const Verification right = verifyPose(index, unweighted(source), R, t);
   EXPECT_DOUBLE_EQ(right.inlier_fraction, 1.0);
   EXPECT_NEAR(right.score, 1.0, 1e-9);
-  const PoseVerification wrong =
+  const Verification wrong =
       verifyPose(index, unweighted(source), R, t + Eigen::Vector3d(30, 0, 0));
   EXPECT_EQ(wrong.inlier_fraction, 0.0);
   EXPECT_EQ(wrong.score, 0.0);
-  const PoseVerification none =
+  const Verification none =
       verifyPose(index, unweighted(Eigen::Matrix3Xd(3, 0)), R, t);
   EXPECT_EQ(none.inlier_fraction, 0.0);
   EXPECT_THROW(verifyPose(index, {source, Eigen::VectorXd::Ones(3), {}}, R, t),
@@ -222,10 +222,10 @@ TEST(VerifyPose, SameResultForAnyThreadCount)
   const FreeSpace seen = freeSpace(target, 32, 0.5);
   const Eigen::VectorXd w = Eigen::VectorXd::LinSpaced(source.cols(), 1.0, 2.0);
   const VerificationSamples samples{source, w, {}};
-  const PoseVerification one = verifyPose(index, samples, Eigen::Matrix3d::Identity(),
+  const Verification one = verifyPose(index, samples, Eigen::Matrix3d::Identity(),
                                           Eigen::Vector3d::Zero(), 1, &seen);
   for (int threads : {2, 3, 8}) {
-    const PoseVerification many =
+    const Verification many =
         verifyPose(index, samples, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(),
                    threads, &seen);
     EXPECT_EQ(one.inlier_fraction, many.inlier_fraction);
@@ -242,13 +242,13 @@ TEST(FreeSpace, SamplesInFrontOfWhatTheSensorSawViolateAndThoseBehindDoNot)
   const Eigen::Matrix3Xd samples = wall(1.0, 0.3, 0.05); // same directions, at ~1/10
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
   const VerificationSamples s{samples, Eigen::VectorXd::Ones(samples.cols()), {}};
-  const PoseVerification in_front =
+  const Verification in_front =
       verifyPose(index, s, I, Eigen::Vector3d(4.0, 0, 0), 1, &seen);
   EXPECT_GT(in_front.free_space_violation, 0.99); // at x = 5 m, the sensor saw to 10 m
-  const PoseVerification behind =
+  const Verification behind =
       verifyPose(index, s, I, Eigen::Vector3d(14.0, 0, 0), 1, &seen);
   EXPECT_EQ(behind.free_space_violation, 0.0); // occluded by the wall: unknown, no vote
-  const PoseVerification on_it =
+  const Verification on_it =
       verifyPose(index, s, I, Eigen::Vector3d(9.0, 0, 0), 1, &seen);
   EXPECT_EQ(on_it.free_space_violation, 0.0); // within the margin of the wall
   EXPECT_EQ(on_it.inlier_fraction, 1.0);
@@ -282,7 +282,7 @@ TEST(VerifyPose, PerSampleTermsSumToTheVerification)
     score += w[i] * closeness[i];
     violating += w[i] * violations[i];
   }
-  const PoseVerification v = verifyPose(index, s, I, t, 1, &seen);
+  const Verification v = verifyPose(index, s, I, t, 1, &seen);
   EXPECT_NEAR(v.score, score / w.sum(), 1e-12);
   EXPECT_NEAR(v.free_space_violation, violating / w.sum(), 1e-12);
   EXPECT_NEAR(v.inlier_fraction, w.head(n).sum() / w.sum(), 1e-12);

@@ -2,7 +2,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * The position prior (PhaserParameters::region_*) on an unthinned prior map of every
+ * The position prior (PhaserParameters::region) on an unthinned prior map of every
  * other balm_handheld scan (1.13 M points, scan 0's frame): a query whose 10 m region
  * holds its true position registers; one whose region lies 40 m away does not converge
  * and its pose stays inside the region.
@@ -47,10 +47,7 @@ pcl::phaser::PhaserResult alignInRegion(int index, const Eigen::Vector3d& offset
   pcl::PhaserRegistration<pcl::PointXYZI, pcl::PointXYZI> phaser;
   pcl::phaser::PhaserParameters params = phaser.getParameters();
   params.num_threads = 2;
-  params.region_x = center.x();
-  params.region_y = center.y();
-  params.region_z = center.z();
-  params.region_radius = radius;
+  params.region = pcl::phaser::Region{center.x(), center.y(), center.z(), radius};
   phaser.setParameters(params);
   phaser.setInputTarget(map.cloud);
   phaser.setInputSource(pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(

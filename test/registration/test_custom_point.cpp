@@ -40,7 +40,10 @@ POINT_CLOUD_REGISTER_POINT_STRUCT(test_types::OusterPoint,
                                   (std::uint32_t, range, range))
 // clang-format on
 
-TEST(PhaserRegistrationCustomPoint, OusterStylePointAligns)
+namespace {
+
+/** A room of 20,000 Ouster-style points: floor and three walls, every field set. */
+pcl::PointCloud<test_types::OusterPoint>::Ptr ousterRoom()
 {
   using PointT = test_types::OusterPoint;
   auto target = pcl::make_shared<pcl::PointCloud<PointT>>();
@@ -76,6 +79,15 @@ TEST(PhaserRegistrationCustomPoint, OusterStylePointAligns)
     p.range = static_cast<std::uint32_t>(1000.0f * std::sqrt(p.x * p.x + p.y * p.y));
     target->push_back(p);
   }
+  return target;
+}
+
+} // namespace
+
+TEST(PhaserRegistrationCustomPoint, OusterStylePointAligns)
+{
+  using PointT = test_types::OusterPoint;
+  const auto target = ousterRoom();
   Eigen::Matrix4f T = Eigen::Matrix4f::Identity();
   T.topLeftCorner<3, 3>() = Eigen::AngleAxisf(-2.2f, Eigen::Vector3f::UnitZ()).matrix();
   T.topRightCorner<3, 1>() = Eigen::Vector3f(0.6f, 0.3f, 0.0f);

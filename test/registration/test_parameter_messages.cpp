@@ -28,14 +28,14 @@ bool has(const std::string& text, const std::string& part)
 
 using Phaser = pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ>;
 
-/** \brief \a p with field \a r set to \a value (rounded for int fields). */
+/** \brief \a p with field \a r set to \a value (rounded for int fields); a region's
+ *  field in a region of radius 1 m. */
 PhaserParameters with(const pcl::phaser::ParameterRange& r, double value)
 {
   PhaserParameters p;
-  if (r.integer)
-    p.*r.integer = static_cast<int>(value);
-  else
-    p.*r.real = value;
+  if (r.in_region)
+    p.region = pcl::phaser::Region{0.0, 0.0, 0.0, 1.0};
+  r.set(p, value);
   return p;
 }
 
@@ -57,7 +57,7 @@ TEST(ParameterTable, DefaultsAndBoundsAreLegalAndBeyondIsRefusedByName)
     std::vector<double> bad = {r.min - step};
     if (std::isfinite(r.max))
       bad.push_back(r.max + step);
-    if (r.real)
+    if (!r.integer)
       bad.push_back(std::numeric_limits<double>::quiet_NaN());
     for (const double v : bad) {
       const std::string why = pcl::phaser::validateParameters(with(r, v));
@@ -72,6 +72,15 @@ TEST(ParameterTable, DefaultsAndBoundsAreLegalAndBeyondIsRefusedByName)
   p.voxel_size = 0.1;
   p.spatial_grid_size = 0;
   EXPECT_EQ(pcl::phaser::validateParameters(p), "");
+  // A region needs a radius; setting the radius to 0 through the table removes it.
+  p.region = pcl::phaser::Region{1.0, 2.0, 3.0};
+  EXPECT_TRUE(
+      has(pcl::phaser::validateParameters(p), "region_radius = 0 with a region"));
+  pcl::phaser::findParameterRange("region_radius")->set(p, 0.0);
+  EXPECT_FALSE(p.region.has_value());
+  pcl::phaser::findParameterRange("region_y")->set(p, 5.0);
+  ASSERT_TRUE(p.region.has_value());
+  EXPECT_EQ(p.region->y, 5.0);
 }
 
 TEST(ParameterMessages, BandwidthOneIsRefusedAndTwoRegisters)

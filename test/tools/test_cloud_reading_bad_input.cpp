@@ -220,6 +220,17 @@ TEST(CloudIoBadInput, PcdHeadersThatLie)
        xyzPcdHeader("100000000", "binary_compressed") +
            bytesOf(std::vector<std::uint32_t>{4, 1200000000u}) + "abcd",
        "ran out of memory"},
+  };
+  checkHostileFiles(tmp, cases);
+}
+
+TEST(CloudIoBadInput, PcdFieldsThatLie)
+{
+  TempDir tmp;
+  QuietPcl quiet;
+  const std::string twelve = randomBytes(12, 3);
+  const std::string xyz = "x y z", f4 = "4 4 4", fff = "F F F", ones = "1 1 1";
+  const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
       {"ascii_claims_more.pcd", xyzPcdHeader("1000000", "ascii") + "1 2 3\n",
        "rejected"},
       {"short_ascii.pcd", xyzPcdHeader("3", "ascii") + "1 2 3\n4 5\n", "rejected"},
@@ -250,7 +261,7 @@ TEST(CloudIoBadInput, PcdHeadersThatLie)
   checkHostileFiles(tmp, cases);
 }
 
-TEST(CloudIoBadInput, PlyHeadersThatLie)
+TEST(CloudIoBadInput, PlyCountsAndGridsThatLie)
 {
   TempDir tmp;
   QuietPcl quiet;
@@ -296,6 +307,16 @@ TEST(CloudIoBadInput, PlyHeadersThatLie)
        "rejected"},
       {"range_grid_without_dims.ply",
        plyXYZ(ascii, "1", "", rangeGrid("2")) + "1 2 3\n1 0\n0\n", "inconsistent"},
+  };
+  checkHostileFiles(tmp, cases);
+}
+
+TEST(CloudIoBadInput, PlyHeadersThatLie)
+{
+  TempDir tmp;
+  QuietPcl quiet;
+  const std::string ascii = "ascii", binary = "binary_little_endian";
+  const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
       // PCL's obj_info handler asserts (aborts) on an indented obj_info line.
       {"indented_obj_info.ply",
        plyXYZ(ascii, "1", " obj_info num_cols 2\n") + "1 2 3\n", "crashed (Aborted)"},

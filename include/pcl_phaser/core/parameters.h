@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace pcl::phaser {
@@ -19,6 +20,19 @@ enum class ProjectionCenter {
    *  does the target or the target's origin is off its data (a map in a site frame),
    *  else Centroid (see PhaserResult::projection_center). */
   Automatic
+};
+
+/** \brief A position prior: the source's sensor, its frame origin after the guess, lies
+ *  within radius of (x, y, z) in the target's frame. Only target points a sensor there
+ *  could see are used, the translation search covers the region, and a pose outside it
+ *  is never returned. The source is projected about its sensor, the target about the
+ *  region's center, whatever projection_center says. */
+struct Region {
+  double x = 0.0, y = 0.0, z = 0.0; ///< the center, meters, target frame
+  double radius = 0.0;              ///< meters, > 0
+  /** \brief Target points farther than radius + this from the center are left out;
+   *  0: the source's 99th-percentile range, rounded up to 10 m. */
+  double sensor_range = 0.0;
 };
 
 /** \brief Every setting of one registration, with its default; the numeric fields'
@@ -52,17 +66,8 @@ struct PhaserParameters {
   double min_constraint = 0.04;           ///< of diagnostics.verification.constraint
   double min_peak_score = 20.0;           ///< of diagnostics.translation_score ...
   double min_normalized_overlap = 0.55;   ///< ... or half that score and this overlap
-  /** \brief Position prior (a GNSS fix, the last known pose): the source's sensor, its
-   *  frame origin after the guess, lies within region_radius of (region_x, region_y,
-   *  region_z) in the target's frame; 0: no prior. Only target points a sensor there
-   *  could see are used, the translation search covers the region, and a pose outside
-   *  it is never returned. The source is projected about its sensor, the target about
-   *  the region's center, whatever projection_center says. */
-  double region_radius = 0.0;
-  double region_x = 0.0, region_y = 0.0, region_z = 0.0; ///< meters, target frame
-  /** \brief With a region: target points farther than region_radius + this from its
-   *  center are left out; 0: the source's 99th-percentile range, rounded up to 10 m. */
-  double sensor_range = 0.0;
+  /** \brief Position prior (a GNSS fix, the last known pose); none by default. */
+  std::optional<Region> region;
   /** \brief Gravity prior, degrees (0: off). Both clouds are z-up after the guess (or
    *  the guess makes them so) up to this tilt: only rotations tilting the source by
    *  less are searched, and a result tilted more is replaced by the best hypothesis
@@ -70,16 +75,36 @@ struct PhaserParameters {
   double max_tilt_deg = 0.0;
 };
 
-/** \brief One row of kParameterRanges: a numeric field of PhaserParameters. */
+/** \brief One row of kParameterRanges: a numeric field of PhaserParameters or of its
+ *  region. */
 struct ParameterRange {
-  const char* name;               ///< the field's name
-  int PhaserParameters::*integer; ///< the field when it is an int, else null
-  double PhaserParameters::*real; ///< the field when it is a double, else null
-  double min, max;                ///< inclusive; max inf: no upper bound
-  const char *unit, *meaning;     ///< unit ("" when none), one-line meaning
+  const char* name;                    ///< the field's name
+  int PhaserParameters::*integer;      ///< the field when it is an int, else null
+  double PhaserParameters::*real;      ///< the field when it is a double, else null
+  double min, max;                     ///< inclusive; max inf: no upper bound
+  const char *unit, *meaning;          ///< unit ("" when none), one-line meaning
+  double Region::*in_region = nullptr; ///< the field when it is the region's, else null
+  /** \brief The field's value; a region's field is 0 without a region. */
   double value(const PhaserParameters& p) const
   {
-    return integer ? p.*integer : p.*real;
+    if (integer || real)
+      return integer ? p.*integer : p.*real;
+    return p.region ? (*p.region).*in_region : 0.0;
+  }
+  /** \brief Sets the field to \a v (an int field to its integer part). A region's
+   *  field set to nonzero makes the region; its radius set to 0 removes it. */
+  void set(PhaserParameters& p, double v) const
+  {
+    if (integer)
+      p.*integer = static_cast<int>(v);
+    else if (real)
+      p.*real = v;
+    else if (in_region == &Region::radius && v == 0.0)
+      p.region.reset();
+    else if (p.region || v != 0.0) {
+      Region& region = p.region ? *p.region : p.region.emplace();
+      region.*in_region = v;
+    }
   }
 };
 
@@ -117,16 +142,18 @@ inline constexpr ParameterRange kParameterRanges[] = {
      "about centroids: least translation peak-to-sidelobe ratio"},
     {"min_normalized_overlap", nullptr, &PhaserParameters::min_normalized_overlap, 0, 1,
      "", "about centroids: least overlap that lets half that score do"},
-    {"region_radius", nullptr, &PhaserParameters::region_radius, 0, 1e5, "m",
-     "position prior: the source's sensor is this close to the region center (0: off)"},
-    {"region_x", nullptr, &PhaserParameters::region_x, -1e6, 1e6, "m",
-     "position prior: region center, target frame"},
-    {"region_y", nullptr, &PhaserParameters::region_y, -1e6, 1e6, "m",
-     "position prior: region center, target frame"},
-    {"region_z", nullptr, &PhaserParameters::region_z, -1e6, 1e6, "m",
-     "position prior: region center, target frame"},
-    {"sensor_range", nullptr, &PhaserParameters::sensor_range, 0, 1e4, "m",
-     "position prior: target points within region_radius + this are used (0: auto)"},
+    {"region_radius", nullptr, nullptr, 0, 1e5, "m",
+     "position prior: the source's sensor is this close to the region center (0: off)",
+     &Region::radius},
+    {"region_x", nullptr, nullptr, -1e6, 1e6, "m",
+     "position prior: region center, target frame", &Region::x},
+    {"region_y", nullptr, nullptr, -1e6, 1e6, "m",
+     "position prior: region center, target frame", &Region::y},
+    {"region_z", nullptr, nullptr, -1e6, 1e6, "m",
+     "position prior: region center, target frame", &Region::z},
+    {"sensor_range", nullptr, nullptr, 0, 1e4, "m",
+     "position prior: target points within region_radius + this are used (0: auto)",
+     &Region::sensor_range},
     {"max_tilt_deg", nullptr, &PhaserParameters::max_tilt_deg, 0, 180, "deg",
      "gravity prior: largest tilt of the rotation searched (0: off)"}};
 

@@ -6,6 +6,7 @@
 
 #include <pcl_phaser/core/bingham.h>
 #include <pcl_phaser/core/parameters.h>
+#include <pcl_phaser/core/result.h>
 #include <pcl_phaser/core/types.h>
 
 #include <Eigen/Core>
@@ -17,102 +18,6 @@
 
 /** \brief The registration engine (Eigen and FFTW, no PCL); entry point align(). */
 namespace pcl::phaser {
-
-/** \brief Milliseconds spent in each stage of one align(). */
-struct StageTimes {
-  double target = 0.0;       ///< the target's preparation; 0 from the cache
-  double sampling = 0.0;     ///< spherical binning of the source
-  double sht = 0.0;          ///< spherical harmonic transforms of the source
-  double so3 = 0.0;          ///< SO(3) correlations and peak searches
-  double refinement = 0.0;   ///< Newton refinement of the rotation
-  double translation = 0.0;  ///< voxelization, 3-D FFTs, correlation, peaks
-  double verification = 0.0; ///< source samples and pose verification
-  double orientation = 0.0;  ///< surface patches and orientation histograms
-  double total() const       ///< the sum of the stages
-  {
-    return target + sampling + sht + so3 + refinement + translation + orientation +
-           verification;
-  }
-};
-
-/** \brief How a pose verifies: source samples against the target points within the
- *  verification radius. Shares are in [0, 1]. */
-struct Verification {
-  double inlier_fraction = 0.0;      ///< share with a target point within the radius
-  double score = 0.0;                ///< the share weighted by closeness
-  double free_space_violation = 0.0; ///< share where the target's sensor saw through
-  double reverse_free_space_violation = 0.0; ///< target samples the source saw through
-  /** \brief How well the matches pin the translation in every direction: the smallest
-   *  eigenvalue of the inliers' normalized sum w n n^T, [0, 1/3]; 0 without normals. */
-  double constraint = 0.0;
-  /** \brief Ranks poses: score less 6 x both free-space violations, [-12, 1]. */
-  double rank = 0.0;
-};
-
-/** \brief A verified hypothesis of the global search. */
-struct Hypothesis {
-  Eigen::Matrix4d transformation = Eigen::Matrix4d::Identity(); ///< as the result's
-  /// its rotation and translation about the projection centers
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
-  double rotation_score = 0.0;   ///< normalized correlation at its grid peak, [-1, 1]
-  double overlap = 0.0;          ///< peak of its 3-D correlation (larger is better)
-  bool from_orientation = false; ///< a peak of the orientation histograms, not of range
-  Verification verification;     ///< of this pose
-};
-
-/** \brief What one align() measured on the way to its answer (failed: defaults). */
-struct PhaserDiagnostics {
-  double rotation_score = 0.0; ///< normalized SO(3) correlation at the estimate
-  /** \brief Peak-to-sidelobe ratio of the final 3-D correlation's Laplacian, >= 0. */
-  double translation_score = 0.0;
-  /** \brief Cosine similarity of the aligned voxel grids, [-1, 1]. */
-  double normalized_overlap = 0.0;
-  Verification verification; ///< of the final pose
-  /** \brief Highest rank of a hypothesis distinct from the final pose (over 10 deg or
-   *  two coarse voxels away); -infinity: none. */
-  double runner_up_rank = -std::numeric_limits<double>::infinity();
-  double runner_up_error = 0.0;     ///< std. error of the rank gap (0: none, centroids)
-  double verification_radius = 0.0; ///< meters: half the coarse voxel
-  int verification_samples = 0;     ///< source samples verified
-  /** \brief Enough samples and, about sensor origins, verification within
-   *  PhaserParameters' limits and the final rank 2.33 runner_up_error above the
-   *  runner-up's. */
-  bool verified = false;
-  std::vector<Hypothesis> hypotheses; ///< every hypothesis, pass-1 peaks first
-  int passes = 0;                     ///< passes run
-  /// rotations (w, x, y, z) about the estimate and weights, for rotationUncertainty()
-  std::vector<Eigen::Vector4d> rotation_samples;
-  std::vector<double> rotation_weights;
-  StageTimes times;
-};
-
-/** \brief What one align() found. On failure (error not empty) transformation is the
- *  guess and the rest keeps its defaults. */
-struct PhaserResult {
-  std::string error; ///< empty on success, else why nothing was estimated
-  /** \brief p_target = T p_source, the guess composed: T = [R, c_t + t - R c_s] *
-   *  guess for the estimate (R, t) about the projection centers c_s, c_t. */
-  Eigen::Matrix4d transformation = Eigen::Matrix4d::Identity();
-  /** \brief The final pose verified and, about centroids, its translation peak is
-   *  distinct (min_peak_score, min_normalized_overlap). */
-  bool converged = false;
-  /// the center used: the requested one, or what Automatic chose
-  ProjectionCenter projection_center = ProjectionCenter::SensorOrigin;
-  int chosen_hypothesis = 0; ///< index of the hypothesis the estimate was refined from
-  /// R c_s, meters: how far a rotation error moves the translation
-  Eigen::Vector3d lever_arm = Eigen::Vector3d::Zero();
-  /// m^2, target frame: error of the last 3-D correlation's peak under its sidelobes
-  Eigen::Matrix3d translation_covariance = Eigen::Matrix3d::Zero();
-  /** \brief Covariance of the final pose from its point-to-plane fit, as
-   *  poseCovariance(); zero when too few samples match or a direction is unmeasured. */
-  Eigen::Matrix<double, 6, 6> fit_covariance = Eigen::Matrix<double, 6, 6>::Zero();
-  /** \brief Covariance of the pose error, poseCovariance(result,
-   *  rotationUncertainty(result), bandwidth): fit_covariance, else the spectral model;
-   *  symmetric positive definite when converged, zero otherwise. */
-  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
-  PhaserDiagnostics diagnostics; ///< scores, verification, hypotheses, timings
-};
 
 /** \brief The source of one align(): finite points (3 x n) and channel values. */
 struct SourceCloud {

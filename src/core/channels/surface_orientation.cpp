@@ -3,9 +3,9 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  */
 #include "channels/surface_orientation.h"
+#include "index/point_index.h"
 #include "sphere/spherical_sampling.h"
 #include "support/error.h"
-#include "verification/voxel_hash.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -92,10 +92,6 @@ SphericalSpectrum orientationSpectrum(const SurfacePatches& patches, int bandwid
     F.row(l) *= std::exp(-0.5 * l * (l + 1) * sigma * sigma);
   return F;
 }
-
-} // namespace pcl::phaser
-
-namespace pcl::phaser {
 
 Eigen::Matrix3Xd patchNormalsAt(const SurfacePatches& patches,
                                 const Eigen::Matrix3Xd& points)

@@ -7,7 +7,7 @@
  */
 #include "pipeline/pipeline_internal.h"
 #include "pipeline/projection_center.h"
-#include "pipeline/region.h"
+#include "priors/allowed_poses.h"
 
 #include <mutex>
 #include <new>
@@ -22,8 +22,7 @@ struct Target::Cache {
   std::shared_ptr<const TargetModel> model;
   ProjectionCenter center = ProjectionCenter::SensorOrigin; ///< of model
   Eigen::Vector3d offset = Eigen::Vector3d::Zero(); ///< the projection center of model
-  bool has_region = false; ///< model is of the points in region only
-  detail::Region region;
+  std::optional<detail::SearchRegion> region; ///< model is of the points in it only
 };
 
 Target::Target(Eigen::Matrix3Xd points, ChannelValues channels)
@@ -136,14 +135,13 @@ ProjectionCenter chooseCenter(const Target& target, const Eigen::Matrix3Xd& move
  *  origin. */
 std::shared_ptr<const TargetModel>
 targetModel(const Target& target, ProjectionCenter center,
-            const StageParameters& params, const detail::Region* region,
-            Eigen::Vector3d& offset, double& target_ms)
+            const StageParameters& params,
+            const std::optional<detail::SearchRegion>& region, Eigen::Vector3d& offset,
+            double& target_ms)
 {
   auto& cache = TargetAccess::cache(target);
   std::lock_guard<std::mutex> lock(cache.mutex);
-  const bool same_region =
-      region ? cache.has_region && cache.region == *region : !cache.has_region;
-  if (!cache.model || cache.center != center || !same_region ||
+  if (!cache.model || cache.center != center || cache.region != region ||
       !sameModel(cache.model->params, params)) {
     cache.model.reset();
     if (region) {
@@ -165,9 +163,7 @@ targetModel(const Target& target, ProjectionCenter center,
           detail::prepareTarget(points, params, TargetAccess::channels(target));
     }
     cache.center = center;
-    cache.has_region = region != nullptr;
-    if (region)
-      cache.region = *region;
+    cache.region = region;
     target_ms = cache.model->preparation_ms;
   }
   offset = cache.offset;
@@ -213,13 +209,10 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
   for (Eigen::Index i = 0; i < moved.cols(); ++i)
     moved.col(i) = guess.topLeftCorner<3, 3>() * source.points.col(i) +
                    guess.topRightCorner<3, 1>();
-  const bool region_on = detail::hasRegion(params);
-  const detail::Region region =
-      region_on ? detail::regionOf(params, moved, guess.topRightCorner<3, 1>())
-                : detail::Region();
+  const detail::AllowedPoses allowed = detail::allowedPoses(params, moved, guess);
   const ProjectionCenter center =
-      region_on ? ProjectionCenter::SensorOrigin
-                : chooseCenter(target, moved, guess, params.projection_center);
+      allowed.region ? ProjectionCenter::SensorOrigin
+                     : chooseCenter(target, moved, guess, params.projection_center);
   StageParameters stage_params{params, center == ProjectionCenter::SensorOrigin};
   stage_params.num_threads = resolveThreadCount(params.num_threads);
   // The tilt pull it corrects comes from a scanner's band, seen about its origin only.
@@ -228,8 +221,8 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
   PhaserResult result;
   Eigen::Vector3d target_center;
   const std::shared_ptr<const TargetModel> model =
-      targetModel(target, center, stage_params, region_on ? &region : nullptr,
-                  target_center, result.diagnostics.times.target);
+      targetModel(target, center, stage_params, allowed.region, target_center,
+                  result.diagnostics.times.target);
   const Eigen::Vector3d source_center =
       center == ProjectionCenter::Centroid
           ? Eigen::Vector3d(moved.rowwise().mean())
@@ -253,8 +246,7 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
     h.transformation =
         callerFrame(h.rotation, h.translation, source_center, target_center, guess);
   result.converged = converged(result, params);
-  if (region_on)
-    detail::confineToRegion(result, region);
+  detail::keepAllowed(result, allowed);
   result.covariance =
       poseCovariance(result, rotationUncertainty(result), params.bandwidth);
   return result;

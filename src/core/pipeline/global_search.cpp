@@ -6,8 +6,8 @@
  * verification and local refinement, and the choice among them.
  */
 #include "pipeline/pipeline_internal.h"
-#include "pipeline/region.h"
-#include "pipeline/tilt_prior.h"
+#include "priors/region.h"
+#include "priors/tilt_prior.h"
 
 namespace pcl::phaser {
 namespace detail {
@@ -165,7 +165,7 @@ void addTranslationPeaks(const SourceContext& source,
         target.coarse,
         occupancySpectrum(target.coarse.grid, R * source.coarse_points, 1),
         source.params.whitening, 1);
-    if (hasRegion(source.params))
+    if (source.params.region)
       keepShiftsWithin(C, Eigen::Vector3d::Zero(), maxShift(source));
     std::vector<SpatialCorrelationResult> peaks =
         findDistinctSpatialPeaks(C, 1 + kExtraTranslationPeaks, kPeakSeparation);

@@ -5,7 +5,7 @@
  * The target model, the source context and the order of the stages of one estimate.
  */
 #include "pipeline/pipeline_internal.h"
-#include "pipeline/tilt_prior.h"
+#include "priors/tilt_prior.h"
 
 namespace pcl::phaser {
 namespace detail {
@@ -205,7 +205,8 @@ RigidPose estimateCentered(const TargetModel& target, const Eigen::Matrix3Xd& po
                            const StageParameters& requested,
                            const ChannelValues& raw_channels, PhaserResult& result)
 {
-  const StageParameters params = withTiltPrior(requested);
+  StageParameters params = requested;
+  params.orientation_candidates = tiltPriorOrientationCandidates(requested);
   const ChannelValues channels = normalizeChannels(raw_channels, points.cols());
   PhaserDiagnostics& diagnostics = result.diagnostics;
   StageTimes& times = diagnostics.times;
@@ -226,7 +227,6 @@ RigidPose estimateCentered(const TargetModel& target, const Eigen::Matrix3Xd& po
   Pose pose = reprojectionPasses(source, search.pose, diagnostics.passes, times);
   pose = refineFinalPose(source, pose, result);
   judgeFinalPose(source, pose, result);
-  keepWithinTiltPrior(params, pose, result);
   return pose;
 }
 

@@ -152,7 +152,7 @@ GlobalSearch globalSearch(const SourceContext& source,
 
 // pipeline_verdict.cpp
 /** \a measured with its rank: score less kViolationWeight x both violations. */
-Verification ranked(const PoseVerification& measured);
+Verification ranked(const Verification& measured);
 /** Whether \a verification meets the verification limits of \a params. */
 bool meetsLimits(const Verification& verification, const PhaserParameters& params);
 

@@ -5,7 +5,7 @@
  * Later passes, final refinement and the steps they share with the global search.
  */
 #include "pipeline/pipeline_internal.h"
-#include "pipeline/region.h"
+#include "priors/region.h"
 
 namespace pcl::phaser {
 namespace detail {
@@ -160,7 +160,7 @@ Verification verifyBothWays(const SourceContext& source, const Eigen::Matrix3d& 
   const auto start = Clock::now();
   const StageParameters& params = source.params;
   const TargetModel& target = source.target;
-  PoseVerification verification =
+  Verification verification =
       verifyPose(target.index, source.samples, R, t, threads,
                  params.sensor_centered ? &target.free_space : nullptr);
   if (params.sensor_centered)
@@ -199,7 +199,7 @@ SpatialCorrelationResult correlateTranslation(const SpatialSpectrum& target,
 double maxShift(const SourceContext& source)
 {
   const StageParameters& params = source.params;
-  return hasRegion(params) ? params.region_radius + source.target.coarse.grid.voxel_size
+  return params.region ? params.region->radius + source.target.coarse.grid.voxel_size
                            : std::numeric_limits<double>::infinity();
 }
 

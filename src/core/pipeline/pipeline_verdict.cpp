@@ -94,14 +94,9 @@ double rankDifferenceError(const SourceContext& source, const RigidPose& a,
 
 } // namespace
 
-Verification ranked(const PoseVerification& measured)
+Verification ranked(const Verification& measured)
 {
-  Verification out;
-  out.inlier_fraction = measured.inlier_fraction;
-  out.score = measured.score;
-  out.free_space_violation = measured.free_space_violation;
-  out.reverse_free_space_violation = measured.reverse_free_space_violation;
-  out.constraint = measured.constraint;
+  Verification out = measured;
   out.rank =
       measured.score - kViolationWeight * (measured.free_space_violation +
                                            measured.reverse_free_space_violation);

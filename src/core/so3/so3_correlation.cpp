@@ -276,11 +276,8 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
   grid.beta_rows_ = rows;
   grid.row_stride_ = 2 * layout.nh;
   // Only the computed rows are stored (operator() gives -infinity beyond them).
-  grid.data_ =
-      static_cast<double*>(fftw_malloc(sizeof(fftw_complex) * layout.slice * rows));
-  if (!grid.data_)
-    throw std::bad_alloc();
-  layout.T = reinterpret_cast<Complex*>(grid.data_);
+  grid.data_.reset(detail::fftwAllocate<double>(2 * layout.slice * rows).release());
+  layout.T = reinterpret_cast<Complex*>(grid.data_.get());
 
   const WignerTables tables{*steps_, log_factorials_, cos_beta_, log_cos_half_,
                             log_sin_half_};

@@ -68,30 +68,9 @@ int betaRowsForTilt(int output_bandwidth, double max_tilt)
   return std::min(N, std::max(0, static_cast<int>(last) + 1) + 1);
 }
 
-So3CorrelationGrid::So3CorrelationGrid(So3CorrelationGrid&& o) noexcept
-    : output_bandwidth_(o.output_bandwidth_)
-    , beta_rows_(o.beta_rows_)
-    , row_stride_(o.row_stride_)
-    , data_(o.data_)
+void So3CorrelationGrid::FftwFree::operator()(double* p) const
 {
-  o.data_ = nullptr;
-  o.output_bandwidth_ = 0;
-  o.beta_rows_ = 0;
-}
-
-So3CorrelationGrid& So3CorrelationGrid::operator=(So3CorrelationGrid&& o) noexcept
-{
-  std::swap(output_bandwidth_, o.output_bandwidth_);
-  std::swap(beta_rows_, o.beta_rows_);
-  std::swap(row_stride_, o.row_stride_);
-  std::swap(data_, o.data_);
-  return *this;
-}
-
-So3CorrelationGrid::~So3CorrelationGrid()
-{
-  if (data_)
-    fftw_free(data_);
+  fftw_free(p);
 }
 
 So3GridIndex So3CorrelationGrid::argmax(int num_threads) const
@@ -110,7 +89,7 @@ So3GridIndex So3CorrelationGrid::argmax(int num_threads) const
         for (int j = static_cast<int>(first); j < last; ++j)
           for (int a = 0; a < N; ++a) {
             const double* row =
-                data_ + (static_cast<std::size_t>(j) * N + a) * row_stride_;
+                data_.get() + (static_cast<std::size_t>(j) * N + a) * row_stride_;
             for (int c = 0; c < N; ++c)
               if (row[c] > best_value[j]) {
                 best_value[j] = row[c];
@@ -147,7 +126,8 @@ So3GridIndex So3CorrelationGrid::argmaxNearIdentity(double radius) const
       angles[static_cast<std::size_t>(sum)] = 2.0 * std::acos(w);
     }
     for (int a = 0; a < N; ++a) {
-      const double* row = data_ + (static_cast<std::size_t>(j) * N + a) * row_stride_;
+      const double* row =
+          data_.get() + (static_cast<std::size_t>(j) * N + a) * row_stride_;
       const double* angle = angles.data() + a;
       for (int c = 0; c < N; ++c) {
         if (angle[c] < nearest_angle) {

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <memory>
 
 namespace pcl::phaser {
 
@@ -42,11 +43,6 @@ double rotationDistance(const Eigen::Matrix3d& A, const Eigen::Matrix3d& B);
  */
 class So3CorrelationGrid {
 public:
-  So3CorrelationGrid() = default;
-  So3CorrelationGrid(So3CorrelationGrid&&) noexcept;
-  So3CorrelationGrid& operator=(So3CorrelationGrid&&) noexcept;
-  ~So3CorrelationGrid();
-
   int outputBandwidth() const { return output_bandwidth_; }
   /** \brief Samples per axis, N = 2 Bo. */
   int size() const { return 2 * output_bandwidth_; }
@@ -80,7 +76,10 @@ private:
   int output_bandwidth_ = 0;
   int beta_rows_ = 0;
   std::size_t row_stride_ = 0; // 2 (Bo + 1): in-place c2r rows are padded
-  double* data_ = nullptr;     // fftw_malloc'ed, beta_rows_ * N * row_stride_ doubles
+  struct FftwFree { // fftw_free, out of line: FFTW stays private to the engine
+    void operator()(double* p) const;
+  };
+  std::unique_ptr<double[], FftwFree> data_; // beta_rows_ * N * row_stride_ doubles
 };
 
 /** \brief Beta rows of the (2Bo)^3 grid holding every rotation of tilt (Euler beta) up

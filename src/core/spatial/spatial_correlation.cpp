@@ -384,13 +384,6 @@ SpatialVolume correlateSpectra(const SpatialSpectrum& target,
   return correlateInto(target, source, product, num_threads);
 }
 
-SpatialVolume correlateSpectra(const SpatialSpectrum& target, SpatialSpectrum&& source,
-                               int num_threads)
-{
-  SpatialSpectrum consumed = std::move(source);
-  return correlateInto(target, consumed, consumed.coefficients, num_threads);
-}
-
 SpatialVolume correlateSpectraWhitened(const SpatialSpectrum& target,
                                        SpatialSpectrum&& source, double exponent,
                                        int num_threads)

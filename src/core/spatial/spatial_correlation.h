@@ -187,10 +187,6 @@ SpatialSpectrum computeSpectrum(const SpatialVolume& volume, int num_threads = 1
 SpatialVolume correlateSpectra(const SpatialSpectrum& target,
                                const SpatialSpectrum& source, int num_threads = 1);
 
-/** \brief The same, consuming \a source: its buffer holds the product. */
-SpatialVolume correlateSpectra(const SpatialSpectrum& target, SpatialSpectrum&& source,
-                               int num_threads = 1);
-
 /** \brief The correlation with each coefficient of F conj(G) divided by its magnitude
  *  to the power \a exponent (0: plain, 1: phase correlation), consuming \a source.
  *  Whitening flattens the broad overlap hill of two occupancy grids (which favors

@@ -58,7 +58,7 @@ void forEachPlaneMatch(const PointIndex& target, const VerificationSamples& samp
 
 /** \brief Local refinement of a pose that verifyPose scores: \a iterations
  *  Gauss-Newton steps on the point-to-plane distances of forEachPlaneMatch, whose
- *  weight derives from the closeness PoseVerification::score averages. It climbs from
+ *  weight derives from the closeness Verification::score averages. It climbs from
  *  a pose whose samples already partly touch the target; it does not search. Stops
  *  early once a step turns less than 1e-4 rad and moves less than 1 mm. Deterministic.
  *  \return the refined pose; \a start when fewer than six samples match */

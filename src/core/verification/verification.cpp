@@ -129,7 +129,7 @@ std::vector<double> sampleCloseness(const PointIndex& target,
   return closeness;
 }
 
-PoseVerification verifyPose(const PointIndex& target,
+Verification verifyPose(const PointIndex& target,
                             const VerificationSamples& samples,
                             const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
                             int num_threads, const FreeSpace* free_space)
@@ -140,7 +140,7 @@ PoseVerification verifyPose(const PointIndex& target,
       (samples.normals.cols() != 0 && samples.normals.cols() != points.cols()))
     throw InvalidArgument("verifyPose: one weight (and normal, if any) per sample");
   const bool with_normals = samples.normals.cols() != 0;
-  PoseVerification verification;
+  Verification verification;
   const Eigen::Index n = points.cols();
   if (n == 0 || target.empty())
     return verification;

@@ -4,35 +4,15 @@
  */
 #pragma once
 
-#include "verification/voxel_hash.h"
+#include "index/point_index.h"
+
+#include <pcl_phaser/core/result.h>
 
 #include <Eigen/Core>
 
 #include <vector>
 
 namespace pcl::phaser {
-
-/** \brief How well a pose puts the source on the target, measured on source samples
- *  against the target points (PointIndex of radius r); shares are weighted. */
-struct PoseVerification {
-  /** \brief Share of the samples with a target point within r, in [0, 1]. */
-  double inlier_fraction = 0.0;
-  /** \brief Mean of max(0, 1 - d^2 / r^2), d the distance to the nearest target point:
-   *  the inlier share weighted by closeness, in [0, 1]. */
-  double score = 0.0;
-  /** \brief Share of the samples in space the target's sensor saw through (closer
-   *  along its ray than the nearest return by more than the margin); 0 without a
-   *  FreeSpace. */
-  double free_space_violation = 0.0;
-  /** \brief The same for target samples against the source's sensor (set by the
-   *  caller). */
-  double reverse_free_space_violation = 0.0;
-  /** \brief How well the matches pin the translation in every direction: the smallest
-   *  eigenvalue of sum w n n^T over the inliers with a normal, over the total weight,
-   *  in [0, 1/3]; near 0 for the ground alone or walls of one direction, 0 without
-   *  normals. */
-  double constraint = 0.0;
-};
 
 /** \brief What the target's sensor saw: per direction cell of the Driscoll-Healy grid
  *  of bandwidth B about its sensor origin, the nearest return in the cell and its 8
@@ -86,9 +66,8 @@ std::vector<double> sampleCloseness(const PointIndex& target,
  *  (kMinNormalCosine) count. An empty sample set or index gives zeros. Deterministic
  *  for any \a num_threads. \throws InvalidArgument unless there is one weight (and
  *  normal, if any) per sample. */
-PoseVerification verifyPose(const PointIndex& target,
-                            const VerificationSamples& samples,
-                            const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
-                            int num_threads = 1, const FreeSpace* free_space = nullptr);
+Verification verifyPose(const PointIndex& target, const VerificationSamples& samples,
+                        const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
+                        int num_threads = 1, const FreeSpace* free_space = nullptr);
 
 } // namespace pcl::phaser

@@ -4,11 +4,11 @@
  */
 #pragma once
 
-// Internal to the engine: the position prior (PhaserParameters::region_*).
+// Internal to the engine: how the position prior (PhaserParameters::region) restricts
+// the search; allowed_poses.h guards the answer.
 #include "spatial/spatial_correlation.h"
 
 #include <pcl_phaser/core/parameters.h>
-#include <pcl_phaser/core/pipeline.h>
 #include <pcl_phaser/core/types.h>
 
 #include <Eigen/Core>
@@ -16,26 +16,21 @@
 namespace pcl::phaser::detail {
 
 /** \brief Where the source's sensor may be, in the target's frame. */
-struct Region {
+struct SearchRegion {
   Eigen::Vector3d center = Eigen::Vector3d::Zero(); ///< meters
   double radius = 0.0;                              ///< meters, > 0
   double reach = 0.0; ///< meters: target points farther from center are left out
-  bool operator==(const Region& other) const
+  bool operator==(const SearchRegion& other) const
   {
     return center == other.center && radius == other.radius && reach == other.reach;
   }
+  bool operator!=(const SearchRegion& other) const { return !(*this == other); }
 };
 
-/** \brief Whether \a params set a position prior. */
-inline bool hasRegion(const PhaserParameters& params)
-{
-  return params.region_radius > 0.0;
-}
-
-/** \brief The region of \a params; the sensor range, when not set, from \a moved (the
- *  source after the guess) about \a sensor (its origin after the guess). */
-Region regionOf(const PhaserParameters& params, const Eigen::Matrix3Xd& moved,
-                const Eigen::Vector3d& sensor);
+/** \brief The search region of \a region; the sensor range, when not set, from \a moved
+ *  (the source after the guess) about \a sensor (its origin after the guess). */
+SearchRegion searchRegion(const Region& region, const Eigen::Matrix3Xd& moved,
+                          const Eigen::Vector3d& sensor);
 
 /** \brief A cloud cut to a region, relative to its center. */
 struct RegionCloud {
@@ -47,7 +42,7 @@ struct RegionCloud {
  *  center, minus the center.
  *  \throws InvalidArgument when fewer than 100 points remain. */
 RegionCloud cropToRegion(const Eigen::Matrix3Xd& points, const ChannelValues& channels,
-                         const Region& region);
+                         const SearchRegion& region);
 
 /** \brief \a cloud reduced to the centroid (points and channel values) of each cube of
  *  the finest cell the target model uses on the grid \a grid_size / \a voxel_size
@@ -59,14 +54,5 @@ RegionCloud thinForModel(const RegionCloud& cloud, int grid_size, double voxel_s
  *  found there. */
 void keepShiftsWithin(SpatialVolume& correlation, const Eigen::Vector3d& center,
                       double radius);
-
-/** \brief Whether the source's sensor under \a transformation (T_target_source with
- *  the guess) lies in \a region. */
-bool inRegion(const Eigen::Matrix4d& transformation, const Region& region);
-
-/** \brief Keeps \a result's pose in \a region: an estimate outside is replaced by the
- *  highest-ranked hypothesis inside (else moved to the region's nearest point) and is
- *  not converged. */
-void confineToRegion(PhaserResult& result, const Region& region);
 
 } // namespace pcl::phaser::detail

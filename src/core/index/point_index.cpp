@@ -3,7 +3,7 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  */
 #include "support/error.h"
-#include "verification/voxel_hash.h"
+#include "index/point_index.h"
 
 #include <algorithm>
 #include <array>

@@ -35,6 +35,8 @@ std::string validateParameters(const PhaserParameters& p)
         << " (" << r.meaning << ")";
     return out.str();
   }
+  if (p.region && !(p.region->radius > 0.0))
+    return "region_radius = 0 with a region: a position prior needs a radius > 0 m";
   return {};
 }
 

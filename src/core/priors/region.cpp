@@ -2,12 +2,12 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * The position prior: which target points a sensor in the region could see, which
- * translations the search may take, and the guard on the answer.
+ * The position prior in the search: which target points a sensor in the region could
+ * see and which translations the search may take.
  */
-#include "pipeline/region.h"
+#include "index/point_index.h"
+#include "priors/region.h"
 #include "support/error.h"
-#include "verification/voxel_hash.h"
 
 #include <algorithm>
 #include <cmath>
@@ -42,20 +42,20 @@ double sensorRange(const Eigen::Matrix3Xd& points, const Eigen::Vector3d& sensor
 
 } // namespace
 
-Region regionOf(const PhaserParameters& params, const Eigen::Matrix3Xd& moved,
-                const Eigen::Vector3d& sensor)
+SearchRegion searchRegion(const Region& region, const Eigen::Matrix3Xd& moved,
+                          const Eigen::Vector3d& sensor)
 {
-  Region region;
-  region.center = {params.region_x, params.region_y, params.region_z};
-  region.radius = params.region_radius;
+  SearchRegion out;
+  out.center = {region.x, region.y, region.z};
+  out.radius = region.radius;
   const double range =
-      params.sensor_range > 0.0 ? params.sensor_range : sensorRange(moved, sensor);
-  region.reach = region.radius + range;
-  return region;
+      region.sensor_range > 0.0 ? region.sensor_range : sensorRange(moved, sensor);
+  out.reach = region.radius + range;
+  return out;
 }
 
 RegionCloud cropToRegion(const Eigen::Matrix3Xd& points, const ChannelValues& channels,
-                         const Region& region)
+                         const SearchRegion& region)
 {
   const double reach2 = region.reach * region.reach;
   std::vector<Eigen::Index> keep;
@@ -128,34 +128,6 @@ void keepShiftsWithin(SpatialVolume& correlation, const Eigen::Vector3d& center,
         if ((shift - center).squaredNorm() > radius2)
           correlation.values[grid.flatIndex(ix, iy, iz)] = lowest;
       }
-}
-
-bool inRegion(const Eigen::Matrix4d& transformation, const Region& region)
-{
-  return (transformation.topRightCorner<3, 1>() - region.center).norm() <=
-         region.radius;
-}
-
-void confineToRegion(PhaserResult& result, const Region& region)
-{
-  if (inRegion(result.transformation, region))
-    return;
-  result.converged = false;
-  const std::vector<Hypothesis>& hypotheses = result.diagnostics.hypotheses;
-  int best = -1;
-  for (std::size_t k = 0; k < hypotheses.size(); ++k)
-    if (inRegion(hypotheses[k].transformation, region) &&
-        (best < 0 ||
-         hypotheses[k].verification.rank > hypotheses[best].verification.rank))
-      best = static_cast<int>(k);
-  if (best >= 0) {
-    result.transformation = hypotheses[best].transformation;
-    result.chosen_hypothesis = best;
-    return;
-  }
-  Eigen::Vector3d offset = result.transformation.topRightCorner<3, 1>() - region.center;
-  offset *= region.radius / offset.norm();
-  result.transformation.topRightCorner<3, 1>() = region.center + offset;
 }
 
 } // namespace pcl::phaser::detail
