@@ -3,6 +3,8 @@
 //
 #include "batch_records.h"
 
+#include <pcl_phaser/core/result_fields.h>
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
@@ -24,18 +26,31 @@ namespace phaser {
 namespace batch {
 namespace {
 
-template <int R, int C>
-Record nested(const Eigen::Matrix<double, R, C>& m)
-{
-  Record rows = Record::array();
-  for (int r = 0; r < R; ++r) {
-    Record row = Record::array();
-    for (int c = 0; c < C; ++c)
-      row.push_back(m(r, c));
-    rows.push_back(std::move(row));
+/** \brief A visitor of visitResultFields() setting each field of \a record: matrices
+ *  as row-major nested arrays, groups as objects, non-finite numbers as null. */
+struct FieldSetter {
+  Record& record;
+  template <class T, class = std::enable_if_t<std::is_arithmetic_v<T>>>
+  void operator()(const char* name, T value)
+  {
+    record[name] = value;
   }
-  return rows;
-}
+  template <class Derived>
+  void operator()(const char* name, const Eigen::MatrixBase<Derived>& m)
+  {
+    Record& rows = record[name] = Record::array();
+    for (Eigen::Index r = 0; r < m.rows(); ++r) {
+      Record& row = rows.emplace_back(Record::array());
+      for (Eigen::Index c = 0; c < m.cols(); ++c)
+        row.push_back(m(r, c));
+    }
+  }
+  template <class Visit>
+  void operator()(const char* name, const FieldGroup<Visit>& group)
+  {
+    group.visit(FieldSetter{record[name] = Record::object()});
+  }
+};
 
 /** \brief A nested R x C array of numbers as a matrix; false when it is not one. */
 template <int R, int C>
@@ -155,25 +170,11 @@ Record alignedRecord(const Pair& pair, std::size_t pairs, const PhaserResult& re
     return failedRecord(pair, pairs, result.error);
   Record r = header(pair, pairs);
   r["status"] = "ok";
-  r["transformation"] = nested<4, 4>(result.transformation);
-  r["converged"] = result.converged;
-  r["covariance"] = nested<6, 6>(result.covariance);
-  const PhaserDiagnostics& diagnostics = result.diagnostics;
-  r["inlier_fraction"] = diagnostics.verification.inlier_fraction;
-  r["verification_score"] = diagnostics.verification.score;
-  r["free_space_violation"] = diagnostics.verification.free_space_violation;
-  r["reverse_free_space_violation"] =
-      diagnostics.verification.reverse_free_space_violation;
-  r["constraint"] = diagnostics.verification.constraint;
-  r["verification_rank"] = diagnostics.verification.rank;
-  r["runner_up_rank"] =
-      diagnostics.runner_up_rank; // -infinity (none) is written as null
-  r["runner_up_error"] = diagnostics.runner_up_error;
-  r["rotation_score"] = diagnostics.rotation_score;
-  r["translation_score"] = diagnostics.translation_score;
-  r["normalized_overlap"] = diagnostics.normalized_overlap;
+  FieldSetter set{r};
+  set("transformation", result.transformation);
+  set("converged", result.converged);
+  visitResultFields(result, set);
   r["time_ms"] = time_ms;
-  r["target_ms"] = diagnostics.times.target;
   return r;
 }
 

@@ -246,29 +246,9 @@ std::string toJson(const Result& res, const Options& opt, int code, double total
 {
   json::Object o;
   if (res.global.ran) {
-    const pcl::phaser::PhaserDiagnostics& diagnostics = res.estimate.diagnostics;
-    const pcl::phaser::Verification& verification = diagnostics.verification;
     o = json::stage(res.global);
-    json::Object stages;
-    stages.add("target", json::number(diagnostics.times.target))
-        .add("sampling", json::number(diagnostics.times.sampling))
-        .add("sht", json::number(diagnostics.times.sht))
-        .add("so3", json::number(diagnostics.times.so3))
-        .add("refinement", json::number(diagnostics.times.refinement))
-        .add("translation", json::number(diagnostics.times.translation))
-        .add("orientation", json::number(diagnostics.times.orientation))
-        .add("verification", json::number(diagnostics.times.verification));
-    o.add("rotation_score", json::number(diagnostics.rotation_score))
-        .add("translation_score", json::number(diagnostics.translation_score))
-        .add("inlier_fraction", json::number(verification.inlier_fraction))
-        .add("free_space_violation", json::number(verification.free_space_violation))
-        .add("reverse_free_space_violation",
-             json::number(verification.reverse_free_space_violation))
-        .add("constraint", json::number(verification.constraint))
-        .add("verified", json::boolean(diagnostics.verified))
-        .add("passes", std::to_string(diagnostics.passes))
-        .add("stages_ms", stages.str())
-        .add("source_points", std::to_string(res.source_points))
+    pcl::phaser::visitResultFields(res.estimate, json::FieldWriter{o});
+    o.add("source_points", std::to_string(res.source_points))
         .add("target_points", std::to_string(res.target_points));
     if (res.icp.ran)
       o.add("icp", json::stage(res.icp)

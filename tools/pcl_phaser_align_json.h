@@ -3,12 +3,14 @@
 //
 /** \file pcl_phaser_align_json.h
  * \brief The few JSON writers `pcl_phaser_align --json` needs (numbers, booleans,
- * strings, 4x4 matrices, objects, a registration stage), hand-written so that the tool
- * needs no JSON library.
+ * strings, matrices, objects, the result's fields, a registration stage), hand-written
+ * so that the tool needs no JSON library.
  */
 #pragma once
 
 #include "pcl_phaser_align_steps.h"
+
+#include <pcl_phaser/core/result_fields.h>
 
 #include <Eigen/Core>
 
@@ -61,13 +63,14 @@ inline std::string quote(const std::string& text)
   return (out + "\"");
 }
 
-/** \brief A 4x4 matrix as row-major nested arrays: [[r0], [r1], [r2], [r3]]. */
-inline std::string matrix(const Eigen::Matrix4d& m)
+/** \brief A matrix as row-major nested arrays: [[r0], [r1], ...]. */
+template <class Derived>
+std::string matrix(const Eigen::MatrixBase<Derived>& m)
 {
   std::string out = "[";
-  for (int r = 0; r < 4; ++r) {
+  for (Eigen::Index r = 0; r < m.rows(); ++r) {
     out += r ? ", [" : "[";
-    for (int c = 0; c < 4; ++c)
+    for (Eigen::Index c = 0; c < m.cols(); ++c)
       out += (c ? ", " : "") + number(m(r, c));
     out += "]";
   }
@@ -96,6 +99,27 @@ public:
 
 private:
   std::vector<std::pair<std::string, std::string>> members_;
+};
+
+/** \brief A visitor of visitResultFields() (result_fields.h) adding each field to
+ * \a object; a group becomes a nested object. */
+struct FieldWriter {
+  Object& object;
+  void operator()(const char* name, double v) { object.add(name, number(v)); }
+  void operator()(const char* name, int v) { object.add(name, std::to_string(v)); }
+  void operator()(const char* name, bool v) { object.add(name, boolean(v)); }
+  template <class Derived>
+  void operator()(const char* name, const Eigen::MatrixBase<Derived>& m)
+  {
+    object.add(name, matrix(m));
+  }
+  template <class Visit>
+  void operator()(const char* name, const FieldGroup<Visit>& group)
+  {
+    Object members;
+    group.visit(FieldWriter{members});
+    object.add(name, members.str());
+  }
 };
 
 /** \brief A stage as {"transformation", "converged", "time_ms"} plus "rre_deg" and
