@@ -3,8 +3,6 @@
 //
 #include "batch_records.h"
 
-#include <pcl_phaser/core/result_fields.h>
-
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
@@ -25,32 +23,6 @@ namespace pcl {
 namespace phaser {
 namespace batch {
 namespace {
-
-/** \brief A visitor of visitResultFields() setting each field of \a record: matrices
- *  as row-major nested arrays, groups as objects, non-finite numbers as null. */
-struct FieldSetter {
-  Record& record;
-  template <class T, class = std::enable_if_t<std::is_arithmetic_v<T>>>
-  void operator()(const char* name, T value)
-  {
-    record[name] = value;
-  }
-  template <class Derived>
-  void operator()(const char* name, const Eigen::MatrixBase<Derived>& m)
-  {
-    Record& rows = record[name] = Record::array();
-    for (Eigen::Index r = 0; r < m.rows(); ++r) {
-      Record& row = rows.emplace_back(Record::array());
-      for (Eigen::Index c = 0; c < m.cols(); ++c)
-        row.push_back(m(r, c));
-    }
-  }
-  template <class Visit>
-  void operator()(const char* name, const FieldGroup<Visit>& group)
-  {
-    group.visit(FieldSetter{record[name] = Record::object()});
-  }
-};
 
 /** \brief A nested R x C array of numbers as a matrix; false when it is not one. */
 template <int R, int C>
@@ -170,7 +142,7 @@ Record alignedRecord(const Pair& pair, std::size_t pairs, const PhaserResult& re
     return failedRecord(pair, pairs, result.error);
   Record r = header(pair, pairs);
   r["status"] = "ok";
-  FieldSetter set{r};
+  JsonFields set{r};
   set("transformation", result.transformation);
   set("converged", result.converged);
   visitResultFields(result, set);

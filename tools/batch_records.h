@@ -8,12 +8,12 @@
 #pragma once
 
 #include "batch_pairs.h"
+#include "result_json.h"
 
 #include <pcl_phaser/core/pipeline.h>
 
 #include <Eigen/Core>
 
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <string>
@@ -24,7 +24,7 @@ namespace phaser {
 namespace batch {
 
 /** \brief One record: members keep the order they are written in. */
-using Record = nlohmann::ordered_json;
+using Record = JsonObject;
 
 /** \brief The record of a pair that was aligned: pair, pairs, source, target,
  *  source_id, target_id, status "ok", transformation (4x4 row-major), converged, the
