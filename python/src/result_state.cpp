@@ -10,6 +10,9 @@
 
 #include <pcl_phaser/core/result_fields.h>
 
+#include <type_traits>
+#include <vector>
+
 namespace pcl::phaser::python {
 
 namespace {
@@ -42,13 +45,32 @@ struct DictWriter {
   }
 };
 
+/** \a h as a T. Fixed-size Eigen types go through a dynamic matrix: GCC warns of
+ *  uninitialized storage in pybind11's fixed-size caster. */
+template <typename T>
+T load(const py::handle& h)
+{
+  if constexpr (std::is_base_of_v<Eigen::MatrixBase<T>, T>) {
+    const auto m = h.cast<Eigen::MatrixXd>();
+    if (m.rows() != T::RowsAtCompileTime || m.cols() != T::ColsAtCompileTime)
+      throw py::value_error("a matrix of another shape");
+    return m;
+  } else if constexpr (std::is_same_v<T, std::vector<Eigen::Vector4d>>) {
+    T out;
+    for (const py::handle item : h.cast<py::list>())
+      out.push_back(load<Eigen::Vector4d>(item));
+    return out;
+  } else
+    return h.cast<T>();
+}
+
 /** Assigns each field from dict[name], as DictWriter wrote it. */
 struct DictReader {
   py::dict dict;
   template <typename T>
   void operator()(const char* name, T& value)
   {
-    value = dict[name].template cast<T>();
+    value = load<T>(dict[name]);
   }
   template <typename Visit>
   void operator()(const char* name, const FieldGroup<Visit>& group)

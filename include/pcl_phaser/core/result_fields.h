@@ -58,9 +58,8 @@ void visitStageTimes(T& t, Visitor&& visitor)
   visitor("verification", t.verification);
 }
 
-/** \brief The figures of a [const] PhaserResult that every writer writes, the
- *  tools after their "transformation" and "converged"; runner_up_rank -infinity: none.
- */
+/** \brief The figures of a [const] PhaserResult that every writer writes (the tools
+ *  after their "transformation" and "converged"); runner_up_rank -infinity: none. */
 template <class R, class Visitor>
 void visitResultFields(R& r, Visitor&& visitor)
 {
