@@ -46,7 +46,7 @@ awk -v n="$n" -v a="$t0" -v j="$tj" -v b="$t1" -v c="$t2" -v d="$t3" -v th="$thr
   printf "| pcl_phaser_batch, 2 shards under GNU parallel + merge | %.1f | %.2f | %.2fx |\n", c-b, n/(c-b), (c-b)/(d-c);
   printf "| pcl_phaser_align per pair | %.1f | %.2f | 1x |\n", d-c, n/(d-c) }'
 # The records without timings and run fingerprints (the shard differs), in pair order.
-records() { sed -E 's/,"time_ms":[^,]*,"target_ms":[^,}]*//; s/,"run":"[^"]*"//' "$1" | sort -t: -k2,2n; }
+records() { sed -E 's/,"stages_ms":\{[^}]*\},"time_ms":[^,}]*//; s/,"run":"[^"]*"//' "$1" | sort -t: -k2,2n; }
 cmp -s <(records "$out/serial.jsonl") <(records "$out/merged.jsonl") &&
   echo "sharded = serial: identical records" || echo "sharded != serial"
 cmp -s <(records "$out/serial.jsonl") <(records "$out/jobs.jsonl") &&

@@ -24,19 +24,6 @@ namespace phaser {
 namespace batch {
 namespace {
 
-template <int R, int C>
-Record nested(const Eigen::Matrix<double, R, C>& m)
-{
-  Record rows = Record::array();
-  for (int r = 0; r < R; ++r) {
-    Record row = Record::array();
-    for (int c = 0; c < C; ++c)
-      row.push_back(m(r, c));
-    rows.push_back(std::move(row));
-  }
-  return rows;
-}
-
 /** \brief A nested R x C array of numbers as a matrix; false when it is not one. */
 template <int R, int C>
 bool matrixOf(const Record& value, Eigen::Matrix<double, R, C>& m)
@@ -155,25 +142,11 @@ Record alignedRecord(const Pair& pair, std::size_t pairs, const PhaserResult& re
     return failedRecord(pair, pairs, result.error);
   Record r = header(pair, pairs);
   r["status"] = "ok";
-  r["transformation"] = nested<4, 4>(result.transformation);
-  r["converged"] = result.converged;
-  r["covariance"] = nested<6, 6>(result.covariance);
-  const PhaserDiagnostics& diagnostics = result.diagnostics;
-  r["inlier_fraction"] = diagnostics.verification.inlier_fraction;
-  r["verification_score"] = diagnostics.verification.score;
-  r["free_space_violation"] = diagnostics.verification.free_space_violation;
-  r["reverse_free_space_violation"] =
-      diagnostics.verification.reverse_free_space_violation;
-  r["constraint"] = diagnostics.verification.constraint;
-  r["verification_rank"] = diagnostics.verification.rank;
-  r["runner_up_rank"] =
-      diagnostics.runner_up_rank; // -infinity (none) is written as null
-  r["runner_up_error"] = diagnostics.runner_up_error;
-  r["rotation_score"] = diagnostics.rotation_score;
-  r["translation_score"] = diagnostics.translation_score;
-  r["normalized_overlap"] = diagnostics.normalized_overlap;
+  JsonFields set{r};
+  set("transformation", result.transformation);
+  set("converged", result.converged);
+  visitResultFields(result, set);
   r["time_ms"] = time_ms;
-  r["target_ms"] = diagnostics.times.target;
   return r;
 }
 

@@ -8,12 +8,12 @@
 #pragma once
 
 #include "batch_pairs.h"
+#include "result_json.h"
 
 #include <pcl_phaser/core/pipeline.h>
 
 #include <Eigen/Core>
 
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <string>
@@ -24,12 +24,12 @@ namespace phaser {
 namespace batch {
 
 /** \brief One record: members keep the order they are written in. */
-using Record = nlohmann::ordered_json;
+using Record = JsonObject;
 
-/** \brief The record of a pair that was aligned: source, target, their ids, pair
- *  index and count, transformation (4x4 row-major), converged, covariance (6x6, the
- *  order of PhaserResult::covariance: rotation vector [rad], translation [m]),
- *  the verification figures and time_ms. Numbers round-trip exactly. */
+/** \brief The record of a pair that was aligned: pair, pairs, source, target,
+ *  source_id, target_id, status "ok", transformation (4x4 row-major), converged, the
+ *  fields of visitResultFields() (result_fields.h, as `pcl_phaser_align --json` writes
+ *  them) and time_ms. Numbers round-trip exactly. */
 Record alignedRecord(const Pair& pair, std::size_t pairs, const PhaserResult& result,
                      double time_ms);
 

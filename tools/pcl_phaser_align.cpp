@@ -12,14 +12,15 @@
  * when the truth is known (--gt, the demo), the rotation and translation errors; can
  * write the aligned source (-o), a red/green overlay (-m) and a PNG of it
  * (--screenshot), or print one JSON object (--json). Options and exit codes:
- * printHelp(). Helpers: pcl_phaser_align_{options,steps,json,help}.h and
- * pcl_phaser_align_screenshot.{h,cpp}.
+ * printHelp(). Helpers: pcl_phaser_align_{options,steps,help}.h,
+ * pcl_phaser_align_screenshot.{h,cpp} and result_json.h (shared with the batch).
  */
 #include "cloud_reading.h"
 #include "pcl_phaser_align_help.h"
-#include "pcl_phaser_align_json.h"
 #include "pcl_phaser_align_options.h"
 #include "pcl_phaser_align_screenshot.h"
+#include "pcl_phaser_align_steps.h"
+#include "result_json.h"
 #include "scan_simulator.h"
 
 #include <pcl_phaser/phaser_registration.h>
@@ -38,7 +39,8 @@
 
 using namespace pcl::console;
 namespace align = pcl::phaser::align_tool;
-namespace json = pcl::phaser::json;
+using pcl::phaser::JsonFields;
+using pcl::phaser::JsonObject;
 using namespace pcl::phaser::align_tool;
 
 namespace {
@@ -241,46 +243,41 @@ void printReport(const Result& res)
     printStage("After ICP", res.icp);
 }
 
+/** \brief A stage as {"transformation", "converged", "time_ms"} plus "rre_deg" and
+ * "rte_m" when its errors are known. */
+JsonObject stageJson(const Stage& s)
+{
+  JsonObject o;
+  JsonFields{o}("transformation", s.transform);
+  o["converged"] = s.converged;
+  o["time_ms"] = s.time_ms;
+  if (std::isfinite(s.rre_deg)) {
+    o["rre_deg"] = s.rre_deg;
+    o["rte_m"] = s.rte_m;
+  }
+  return (o);
+}
+
 std::string toJson(const Result& res, const Options& opt, int code, double total_ms)
 {
-  json::Object o;
+  JsonObject o;
   if (res.global.ran) {
-    const pcl::phaser::PhaserDiagnostics& diagnostics = res.estimate.diagnostics;
-    const pcl::phaser::Verification& verification = diagnostics.verification;
-    o = json::stage(res.global);
-    json::Object stages;
-    stages.add("target", json::number(diagnostics.times.target))
-        .add("sampling", json::number(diagnostics.times.sampling))
-        .add("sht", json::number(diagnostics.times.sht))
-        .add("so3", json::number(diagnostics.times.so3))
-        .add("refinement", json::number(diagnostics.times.refinement))
-        .add("translation", json::number(diagnostics.times.translation))
-        .add("orientation", json::number(diagnostics.times.orientation))
-        .add("verification", json::number(diagnostics.times.verification));
-    o.add("rotation_score", json::number(diagnostics.rotation_score))
-        .add("translation_score", json::number(diagnostics.translation_score))
-        .add("inlier_fraction", json::number(verification.inlier_fraction))
-        .add("free_space_violation", json::number(verification.free_space_violation))
-        .add("reverse_free_space_violation",
-             json::number(verification.reverse_free_space_violation))
-        .add("constraint", json::number(verification.constraint))
-        .add("verified", json::boolean(diagnostics.verified))
-        .add("passes", std::to_string(diagnostics.passes))
-        .add("stages_ms", stages.str())
-        .add("source_points", std::to_string(res.source_points))
-        .add("target_points", std::to_string(res.target_points));
-    if (res.icp.ran)
-      o.add("icp", json::stage(res.icp)
-                       .add("method", json::quote(opt.icp_point ? "point_to_point"
-                                                                : "point_to_plane"))
-                       .str());
+    o = stageJson(res.global);
+    pcl::phaser::visitResultFields(res.estimate, JsonFields{o});
+    o["source_points"] = res.source_points;
+    o["target_points"] = res.target_points;
+    if (res.icp.ran) {
+      o["icp"] = stageJson(res.icp);
+      o["icp"]["method"] = opt.icp_point ? "point_to_point" : "point_to_plane";
+    }
   }
   if (opt.demo)
-    o.add("demo_seed", std::to_string(opt.seed));
-  o.add("total_ms", json::number(total_ms));
+    o["demo_seed"] = opt.seed;
+  o["total_ms"] = total_ms;
   if (code != kOk)
-    o.add("error", json::quote(last_error));
-  return (o.add("exit_code", std::to_string(code)).str());
+    o["error"] = last_error;
+  o["exit_code"] = code;
+  return (o.dump(-1, ' ', false, JsonObject::error_handler_t::replace));
 }
 
 // ---- output -----------------------------------------------------------------------

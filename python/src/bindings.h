@@ -55,10 +55,10 @@ bool usesIntensity(const PhaserParameters& params);
 AlignResult alignReleased(const Target& target, const SourceCloud& source,
                           const Eigen::Matrix4d& guess, const PhaserParameters& params);
 
-/** \brief The result's state as bytes (every field, bit for bit) and back, for pickle.
- */
-py::bytes resultState(const AlignResult& r);
-AlignResult resultFromState(const py::bytes& state);
+/** \brief The result's every field as a dict (visitResultState(), bit for bit) and
+ *  back, for to_dict() and pickle. \throws py::value_error a field missing or wrong */
+py::dict resultState(const AlignResult& r);
+AlignResult resultFromState(const py::dict& state);
 
 void bindParameters(py::module_& m);
 void bindResult(py::module_& m);

@@ -149,8 +149,10 @@ void bindResult(py::module_& m)
       .def_property_readonly("times",
                              [](const R& r) { return r.result.diagnostics.times; })
       .def("__repr__", &reprOf)
-      .def(py::pickle([](const R& r) { return resultState(r); },
-                      [](const py::bytes& state) { return resultFromState(state); }));
+      .def("to_dict", &resultState,
+           "Every field as a dict, named as in pcl_phaser_align --json and the batch's "
+           "records (the verification's flat: verification_rank, ...; stages_ms).")
+      .def(py::pickle(&resultState, &resultFromState));
 }
 
 } // namespace pcl::phaser::python

@@ -66,6 +66,48 @@ def test_result_fields_repr_and_pickle(synthetic_pair):
     assert copy.diagnostics.passes == result.diagnostics.passes
     np.testing.assert_array_equal(np.array(copy.diagnostics.rotation_samples),
                                   np.array(result.diagnostics.rotation_samples))
+    same_fields(copy.to_dict(), result.to_dict())
+
+
+def same_fields(a, b):
+    """Two to_dict()s equal to the bit, nested groups and lists of dicts too."""
+    assert list(a) == list(b)
+    for key, value in a.items():
+        if isinstance(value, dict):
+            same_fields(value, b[key])
+        elif isinstance(value, list) and value and isinstance(value[0], dict):
+            assert len(value) == len(b[key])
+            for x, y in zip(value, b[key]):
+                same_fields(x, y)
+        else:
+            np.testing.assert_array_equal(value, b[key], err_msg=key)
+
+
+def test_to_dict_has_the_keys_of_the_tools_json(synthetic_pair):
+    source, target, _ = synthetic_pair
+    result = pcl_phaser.align(source, target, params={"num_threads": 1})
+    fields = result.to_dict()
+    shared = ["covariance", "rotation_score", "translation_score", "normalized_overlap",
+              "inlier_fraction", "verification_score", "free_space_violation",
+              "reverse_free_space_violation", "constraint", "verification_rank",
+              "runner_up_rank", "runner_up_error", "verification_radius",
+              "verification_samples", "verified", "passes", "stages_ms"]
+    keys = list(fields)
+    assert keys[keys.index("covariance"):][:len(shared)] == shared
+    assert fields["verification_rank"] == result.verification.rank
+    assert fields["verification_score"] == result.verification.score
+    assert fields["stages_ms"]["sht"] == result.times.sht
+    assert list(fields["stages_ms"]) == ["target", "sampling", "sht", "so3", "refinement",
+                                         "translation", "orientation", "verification"]
+    assert fields["projection_center"] == result.projection_center
+    assert len(fields["hypotheses"]) == len(result.hypotheses)
+    assert fields["hypotheses"][0]["verification_rank"] == \
+        result.hypotheses[0].verification.rank
+    np.testing.assert_array_equal(fields["transformation"], result.transformation)
+    broken = pcl_phaser.Result.__new__(pcl_phaser.Result)
+    del fields["passes"]
+    with pytest.raises(ValueError, match="bad state"):
+        broken.__setstate__(fields)
 
 
 def test_a_guess_is_composed(synthetic_pair):

@@ -6,6 +6,7 @@
  * information), records cut short by a kill, and merging shard outputs.
  */
 #include "batch_records.h"
+#include "result_field_keys.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -15,9 +16,12 @@
 #include <sstream>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
 namespace batch = pcl::phaser::batch;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
+using pcl::phaser::test::kResultFieldKeys;
+using pcl::phaser::test::kStageKeys;
 
 namespace {
 
@@ -177,6 +181,27 @@ TEST(BatchG2o, NoEdgeForPairsThatDidNotConvergeOrFailed)
   EXPECT_EQ(batch::g2oEdge(batch::failedRecord(pair, 1, "no such file")), "");
   EXPECT_EQ(batch::g2oVertex(3, Eigen::Matrix4d::Identity()),
             "VERTEX_SE3:QUAT 3 0 0 0 0 0 0 1");
+}
+
+TEST(BatchRecords, AlignedRecordHasTheKeysOfPclPhaserAlignJson)
+{
+  batch::Record r =
+      convergedRecord(2, 0, 1, Eigen::Matrix4d::Identity(), Matrix6d::Identity());
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : r.items())
+    keys.push_back(key);
+  std::vector<std::string> expected = {"pair",   "pairs",          "source",
+                                       "target", "source_id",      "target_id",
+                                       "status", "transformation", "converged"};
+  expected.insert(expected.end(), kResultFieldKeys.begin(), kResultFieldKeys.end());
+  expected.push_back("time_ms");
+  EXPECT_EQ(keys, expected);
+  EXPECT_NE(r.dump().find("\"runner_up_rank\":null"), std::string::npos); // none
+  EXPECT_EQ(r["covariance"][5][5], 1.0);
+  std::vector<std::string> stages;
+  for (const auto& [key, value] : r["stages_ms"].items())
+    stages.push_back(key);
+  EXPECT_EQ(stages, std::vector<std::string>(kStageKeys.begin(), kStageKeys.end()));
 }
 
 TEST(BatchRecords, ALineCutShortByAKillIsCutOffAndAppendingGoesOn)

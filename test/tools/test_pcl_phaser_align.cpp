@@ -10,6 +10,7 @@
 #include "../registration/test_data.h"
 #include "cloud_reading.h"
 #include "json_test_reader.h"
+#include "result_field_keys.h"
 #include "scan_simulator.h"
 
 #include <pcl/common/io.h>
@@ -43,6 +44,8 @@ namespace fs = std::filesystem;
 using json_test::Json;
 using json_test::JsonReader;
 using json_test::toMatrix;
+using pcl::phaser::test::kResultFieldKeys;
+using pcl::phaser::test::kStageKeys;
 
 double rotationErrorDeg(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b)
 {
@@ -297,9 +300,21 @@ TEST_F(PclPhaserAlign, JsonIsOneObjectWithTheKeys)
   Eigen::Matrix4d T, T_icp;
   ASSERT_NO_FATAL_FAILURE(checkJsonRun(r, &truth_, j, T));
   EXPECT_TRUE(j.get("converged")->boolean);
-  for (const char* key : {"rotation_score", "translation_score", "passes"})
-    ASSERT_TRUE(j.get(key) && j.get(key)->isNumber()) << key;
+  // The result's fields, the keys and order of the batch's records (result_fields.h).
+  const auto first = std::find_if(j.object.begin(), j.object.end(), [](const auto& m) {
+    return m.first == "covariance";
+  });
+  ASSERT_GE(j.object.end() - first, static_cast<long>(kResultFieldKeys.size()));
+  for (std::size_t i = 0; i < kResultFieldKeys.size(); ++i)
+    EXPECT_EQ(first[i].first, kResultFieldKeys[i]);
+  ASSERT_EQ(j.get("covariance")->array.size(), 6u); // 6 x 6, row-major
+  EXPECT_EQ(j.get("covariance")->array[5].array.size(), 6u);
+  EXPECT_EQ(j.get("verified")->type, Json::Type::Bool);
   EXPECT_GE(j.get("passes")->number, 1.0);
+  const Json* stages = j.get("stages_ms");
+  ASSERT_EQ(stages->object.size(), kStageKeys.size());
+  for (std::size_t i = 0; i < kStageKeys.size(); ++i)
+    EXPECT_EQ(stages->object[i].first, kStageKeys[i]);
   ASSERT_TRUE(j.get("source_points"));
   EXPECT_EQ(j.get("source_points")->number,
             static_cast<double>(source_.size() - 1)); // one NaN point

@@ -32,7 +32,7 @@ npairs=8
 
 # The records without their timings, in pair order: what must be equal between runs.
 normalized() {
-  sed -E 's/,"time_ms":[^,]*,"target_ms":[^,}]*//; s/,"run":"[^"]*"//' "$1" | sort -t: -k2,2n
+  sed -E 's/,"stages_ms":\{[^}]*\},"time_ms":[^,}]*//; s/,"run":"[^"]*"//' "$1" | sort -t: -k2,2n
 }
 
 # The uninterrupted serial run (one job of two engine threads) every other run (other

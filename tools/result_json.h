@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Copyright (c) 2026, the pcl_phaser developers.
+//
+/** \file result_json.h
+ * \brief JSON members of the tools' outputs, `pcl_phaser_align --json` and the records
+ * of `pcl_phaser_batch` alike: a result's fields (core/result_fields.h) and the rest.
+ */
+#pragma once
+
+#include <pcl_phaser/core/result_fields.h>
+
+#include <Eigen/Core>
+
+#include <nlohmann/json.hpp>
+#include <type_traits>
+
+namespace pcl {
+namespace phaser {
+
+/** \brief A JSON object whose members keep the order they are written in. */
+using JsonObject = nlohmann::ordered_json;
+
+/** \brief A visitor of visitResultFields() that sets a member of \a object per field:
+ *  numbers and booleans as they are (dump() writes non-finite numbers as null),
+ *  matrices as row-major nested arrays, groups as objects. */
+struct JsonFields {
+  JsonObject& object;
+  template <class T, class = std::enable_if_t<std::is_arithmetic_v<T>>>
+  void operator()(const char* name, T value)
+  {
+    object[name] = value;
+  }
+  template <class Derived>
+  void operator()(const char* name, const Eigen::MatrixBase<Derived>& m)
+  {
+    JsonObject& rows = object[name] = JsonObject::array();
+    for (Eigen::Index r = 0; r < m.rows(); ++r) {
+      JsonObject& row = rows.emplace_back(JsonObject::array());
+      for (Eigen::Index c = 0; c < m.cols(); ++c)
+        row.push_back(m(r, c));
+    }
+  }
+  template <class Visit>
+  void operator()(const char* name, const FieldGroup<Visit>& group)
+  {
+    group.visit(JsonFields{object[name] = JsonObject::object()});
+  }
+};
+
+} // namespace phaser
+} // namespace pcl
