@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include <nlohmann/json.hpp>
+#include <string>
 #include <type_traits>
 
 namespace pcl {
@@ -21,7 +22,7 @@ namespace phaser {
 using JsonObject = nlohmann::ordered_json;
 
 /** \brief A visitor of visitResultFields() that sets a member of \a object per field:
- *  numbers and booleans as they are (dump() writes non-finite numbers as null),
+ *  numbers, booleans and strings as they are (dump() writes non-finite numbers as null),
  *  matrices as row-major nested arrays, groups as objects. */
 struct JsonFields {
   JsonObject& object;
@@ -30,6 +31,7 @@ struct JsonFields {
   {
     object[name] = value;
   }
+  void operator()(const char* name, const std::string& text) { object[name] = text; }
   template <class Derived>
   void operator()(const char* name, const Eigen::MatrixBase<Derived>& m)
   {

@@ -91,7 +91,7 @@ def test_to_dict_has_the_keys_of_the_tools_json(synthetic_pair):
               "inlier_fraction", "verification_score", "free_space_violation",
               "reverse_free_space_violation", "constraint", "verification_rank",
               "runner_up_rank", "runner_up_error", "verification_radius",
-              "verification_samples", "verified", "passes", "stages_ms"]
+              "verification_samples", "verified", "refusal", "passes", "stages_ms"]
     keys = list(fields)
     assert keys[keys.index("covariance"):][:len(shared)] == shared
     assert fields["verification_rank"] == result.verification.rank

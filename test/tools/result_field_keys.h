@@ -12,7 +12,7 @@
 namespace pcl::phaser::test {
 
 /** \brief The shared result keys (after transformation and converged). */
-constexpr std::array<const char*, 17> kResultFieldKeys = {
+constexpr std::array<const char*, 18> kResultFieldKeys = {
     "covariance",
     "rotation_score",
     "translation_score",
@@ -28,6 +28,7 @@ constexpr std::array<const char*, 17> kResultFieldKeys = {
     "verification_radius",
     "verification_samples",
     "verified",
+    "refusal",
     "passes",
     "stages_ms"};
 

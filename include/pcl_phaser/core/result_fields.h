@@ -14,7 +14,7 @@
  */
 #pragma once
 
-#include <pcl_phaser/core/pipeline.h>
+#include <pcl_phaser/core/result.h>
 
 namespace pcl::phaser {
 
@@ -74,6 +74,7 @@ void visitResultFields(R& r, Visitor&& visitor)
   visitor("verification_radius", d.verification_radius);
   visitor("verification_samples", d.verification_samples);
   visitor("verified", d.verified);
+  visitor("refusal", d.refusal);
   visitor("passes", d.passes);
   const auto times = [&t = d.times](auto&& v) { visitStageTimes(t, v); };
   visitor("stages_ms", FieldGroup<decltype(times)>{times});
