@@ -5,7 +5,7 @@
  * The engine's entry point in the caller's frames: input checks, the projection
  * centers, the target cache, guess composition and the convergence decision.
  */
-#include "pipeline/pipeline_internal.h"
+#include "pipeline/estimate.h"
 #include "pipeline/projection_center.h"
 #include "priors/allowed_poses.h"
 

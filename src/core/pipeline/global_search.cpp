@@ -5,7 +5,9 @@
  * Pass 1, the global search: rotation hypotheses, their coarse translations,
  * verification and local refinement, and the choice among them.
  */
-#include "pipeline/pipeline_internal.h"
+#include "pipeline/global_search.h"
+#include "pipeline/pipeline_stages.h"
+#include "pipeline/pipeline_verdict.h"
 #include "priors/region.h"
 #include "priors/tilt_prior.h"
 

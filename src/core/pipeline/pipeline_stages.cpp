@@ -4,7 +4,8 @@
  *
  * Later passes, final refinement and the steps they share with the global search.
  */
-#include "pipeline/pipeline_internal.h"
+#include "pipeline/pipeline_stages.h"
+#include "pipeline/pipeline_verdict.h"
 #include "priors/region.h"
 
 namespace pcl::phaser {
@@ -19,6 +20,9 @@ struct Viewpoint {
 };
 
 namespace {
+
+/** Binary occupancy: the near-sensor density must not vote for stacking the sensors. */
+constexpr double kOccupancySaturation = 0.05;
 
 /** How far (at B = 64, scaled by 64 / B) the normalized refinement may move from the
  *  maximum of plain C; chosen on the demo pairs and the NEES study. */
@@ -154,6 +158,34 @@ bool finalShift(const SourceContext& source, Pose& next, PhaserResult& result)
 
 } // namespace
 
+SphericalSpectrum sphericalSpectrum(const Eigen::Matrix3Xd& points,
+                                    const ChannelValues& channels,
+                                    const PhaserParameters& params, const char* which,
+                                    StageTimes& times, SphericalSupport* support)
+{
+  int observed = 0;
+  SphericalSpectrum F = cloudSphericalSpectrum(
+      points, channels, params.bandwidth, params.fusion_levels, params.num_threads,
+      observed, times.sampling, times.sht, support);
+  if (observed < 2)
+    throw InvalidArgument(
+        std::string(which) +
+        " cloud has fewer than two distinct directions from its "
+        "projection center (empty, all at the center, or a single point)");
+  if (!(spectrumSquaredNorm(F) > 0.0))
+    throw InvalidArgument(std::string(which) + " cloud is constant on the sphere");
+  return F;
+}
+
+SpatialSpectrum occupancySpectrum(const SpatialGrid& grid,
+                                  const Eigen::Matrix3Xd& points, int num_threads)
+{
+  SpatialVoxelParameters voxel;
+  voxel.saturation = kOccupancySaturation;
+  voxel.num_threads = num_threads;
+  return computeSpectrum(voxelize(grid, points, voxel), num_threads);
+}
+
 Verification verifyBothWays(const SourceContext& source, const Eigen::Matrix3d& R,
                             const Eigen::Vector3d& t, StageTimes& times, int threads)
 {
@@ -200,7 +232,7 @@ double maxShift(const SourceContext& source)
 {
   const StageParameters& params = source.params;
   return params.region ? params.region->radius + source.target.coarse.grid.voxel_size
-                           : std::numeric_limits<double>::infinity();
+                       : std::numeric_limits<double>::infinity();
 }
 
 Pose refineOnSamples(const SourceContext& source, const Pose& pose, StageTimes& times,

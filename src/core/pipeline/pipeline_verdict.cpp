@@ -5,7 +5,7 @@
  * The verdict on a pose: its rank, the limits, and whether it stands out from every
  * distinct hypothesis by more than the choice of samples explains.
  */
-#include "pipeline/pipeline_internal.h"
+#include "pipeline/pipeline_verdict.h"
 
 namespace pcl::phaser {
 namespace detail {

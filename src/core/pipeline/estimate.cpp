@@ -4,7 +4,10 @@
  *
  * The target model, the source context and the order of the stages of one estimate.
  */
-#include "pipeline/pipeline_internal.h"
+#include "pipeline/estimate.h"
+#include "pipeline/global_search.h"
+#include "pipeline/pipeline_stages.h"
+#include "pipeline/pipeline_verdict.h"
 #include "priors/tilt_prior.h"
 
 namespace pcl::phaser {
@@ -24,8 +27,6 @@ constexpr Eigen::Index kMaxVerificationSamples = 16384;
 /** Direction cells of the free-space test (1.4 deg) and its margin in coarse voxels. */
 constexpr int kFreeSpaceBandwidth = 128;
 constexpr double kFreeSpaceMargin = 1.0;
-/** Binary occupancy: the near-sensor density must not vote for stacking the sensors. */
-constexpr double kOccupancySaturation = 0.05;
 /** Patches of the orientation histogram, in coarse voxels. */
 constexpr double kPatchVoxels = 1.0;
 
@@ -129,39 +130,6 @@ SourceContext sourceContext(const TargetModel& target, const Eigen::Matrix3Xd& p
 }
 
 } // namespace
-
-double msSince(Clock::time_point start)
-{
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-SphericalSpectrum sphericalSpectrum(const Eigen::Matrix3Xd& points,
-                                    const ChannelValues& channels,
-                                    const PhaserParameters& params, const char* which,
-                                    StageTimes& times, SphericalSupport* support)
-{
-  int observed = 0;
-  SphericalSpectrum F = cloudSphericalSpectrum(
-      points, channels, params.bandwidth, params.fusion_levels, params.num_threads,
-      observed, times.sampling, times.sht, support);
-  if (observed < 2)
-    throw InvalidArgument(
-        std::string(which) +
-        " cloud has fewer than two distinct directions from its "
-        "projection center (empty, all at the center, or a single point)");
-  if (!(spectrumSquaredNorm(F) > 0.0))
-    throw InvalidArgument(std::string(which) + " cloud is constant on the sphere");
-  return F;
-}
-
-SpatialSpectrum occupancySpectrum(const SpatialGrid& grid,
-                                  const Eigen::Matrix3Xd& points, int num_threads)
-{
-  SpatialVoxelParameters voxel;
-  voxel.saturation = kOccupancySaturation;
-  voxel.num_threads = num_threads;
-  return computeSpectrum(voxelize(grid, points, voxel), num_threads);
-}
 
 std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
                                                  const StageParameters& params,
