@@ -28,6 +28,7 @@
  * and a cached target, the full search with the gravity prior
  * PhaserParameters::max_tilt_deg = DEG, their aligns alternating, and prints the ratio.
  */
+#include "bench_timing.h"
 #include "cloud_reading.h"
 #include "fft_yardstick.h"
 #include "scan_simulator.h"
@@ -47,7 +48,6 @@
 #include <cstdio>
 #include <optional>
 #include <string>
-#include <sys/resource.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <thread>
@@ -58,19 +58,13 @@ namespace {
 
 using PointT = pcl::PointXYZI;
 using Cloud = pcl::PointCloud<PointT>;
+using namespace pcl::phaser::bench;
 
 struct Row {
   double total = 0.0;
   double first = 0.0; ///< the first align of the configuration (the warm-up)
   pcl::phaser::PhaserResult estimate;
 };
-
-double msSince(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
-                                                   start)
-      .count();
-}
 
 /** A child process that spins on one core until stop() (or the parent's exit). */
 class BusyCore {
@@ -124,13 +118,13 @@ Row measure(const Cloud::Ptr& source, const Cloud::Ptr& target, int threads,
   Cloud out;
   // Warm-up: plans and tables (the first align of this configuration), and the target
   // cache when cached.
-  const auto warm = std::chrono::steady_clock::now();
+  const auto warm = Clock::now();
   phaser.align(out);
   const double first = msSince(warm);
   for (int i = 0; i < reps; ++i) {
     if (!cached)
       phaser.setInputTarget(target);
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = Clock::now();
     phaser.align(out);
     Row r;
     r.total = msSince(start);
@@ -143,34 +137,11 @@ Row measure(const Cloud::Ptr& source, const Cloud::Ptr& target, int threads,
   return rows[rows.size() / 2];
 }
 
-/** Minor page faults of the process so far. */
-long minorFaults()
-{
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_minflt;
-}
-
-/** One align's wall time and page faults. */
-struct Timed {
-  double ms = 0.0;
-  long faults = 0;
-};
-
-Timed timedAlign(pcl::PhaserRegistration<PointT, PointT>& phaser)
-{
-  Cloud out;
-  const long faults = minorFaults();
-  const auto start = std::chrono::steady_clock::now();
-  phaser.align(out);
-  return {msSince(start), minorFaults() - faults};
-}
-
 /** Median by time. */
-Timed median(std::vector<Timed> runs)
+Timing median(std::vector<Timing> runs)
 {
   std::sort(runs.begin(), runs.end(),
-            [](const Timed& a, const Timed& b) { return a.ms < b.ms; });
+            [](const Timing& a, const Timing& b) { return a.ms < b.ms; });
   return runs[runs.size() / 2];
 }
 
@@ -183,16 +154,16 @@ void firstInProcess(const Cloud::Ptr& source, const Cloud::Ptr& target, int thre
 {
   pcl::PhaserRegistration<PointT, PointT> phaser;
   configure(phaser, source, target, threads, params, range_only);
-  const Timed first = timedAlign(phaser);
+  const Timing first = timedAlign(phaser);
   const Eigen::Matrix4d transformation = phaser.getResult().transformation;
-  std::vector<Timed> fresh, cached;
+  std::vector<Timing> fresh, cached;
   for (int i = 0; i < reps; ++i) {
     phaser.setInputTarget(target);
     fresh.push_back(timedAlign(phaser));
   }
   for (int i = 0; i < reps; ++i)
     cached.push_back(timedAlign(phaser));
-  const Timed f = median(fresh), c = median(cached);
+  const Timing f = median(fresh), c = median(cached);
   const double unit = pcl::phaser::bench::fftYardstickMs();
   std::printf(
       "yardstick (measured after the aligns): one 128^3 r2c FFT (1 thread) = "
@@ -246,7 +217,7 @@ int firstAlignRun(int argc, char** argv, const pcl::phaser::PhaserParameters& pa
   const bool warm = pcl::console::find_switch(argc, argv, "-warm_up");
   double warm_ms = 0.0;
   std::string warm_error;
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = Clock::now();
   std::thread warm_up;
   if (warm)
     warm_up = std::thread([&] {
@@ -311,7 +282,7 @@ void compareTilt(const Cloud::Ptr& source, const Cloud::Ptr& target, int reps,
   for (int i = 0; i < reps; ++i)
     for (int k = 0; k < 2; ++k) {
       auto& phaser = k == 0 ? full : prior;
-      const auto start = std::chrono::steady_clock::now();
+      const auto start = Clock::now();
       phaser.align(out);
       Row r;
       r.total = msSince(start);

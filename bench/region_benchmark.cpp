@@ -10,6 +10,7 @@
  *   pcl_phaser_region_benchmark [-data DIR] [-every K] [-radius R] [-runs N]
  *                               [-threads T] [QUERY_INDEX ...]
  */
+#include "bench_timing.h"
 #include "fft_yardstick.h"
 #include "prior_map.h"
 
@@ -61,12 +62,10 @@ struct Timed {
 Timed timedAlign(const Target& target, const SourceCloud& source,
                  const PhaserParameters& params)
 {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = bench::Clock::now();
   Timed t;
   t.result = align(target, source, Eigen::Matrix4d::Identity(), params);
-  t.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
-                                                   start)
-             .count();
+  t.ms = bench::msSince(start);
   return t;
 }
 

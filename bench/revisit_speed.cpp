@@ -15,6 +15,7 @@
  *
  * The list: `source target ...` per line (# comments), scans under its folder.
  */
+#include "bench_timing.h"
 #include "cloud_reading.h"
 #include "fft_yardstick.h"
 
@@ -30,7 +31,6 @@
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/resource.h>
 #include <thread>
 #include <vector>
 
@@ -38,48 +38,11 @@ namespace {
 
 using PointT = pcl::PointXYZI;
 using Cloud = pcl::PointCloud<PointT>;
-using Clock = std::chrono::steady_clock;
-
-/** One align: wall time, stages and minor page faults. */
-struct Timing {
-  double ms = 0.0;
-  long faults = 0;
-  pcl::phaser::StageTimes stages;
-};
+using namespace pcl::phaser::bench;
 
 struct Pair {
   Cloud::Ptr source, target;
 };
-
-double msSince(Clock::time_point start)
-{
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-long minorFaults()
-{
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_minflt;
-}
-
-Timing timedAlign(pcl::PhaserRegistration<PointT, PointT>& phaser)
-{
-  Cloud out;
-  const long faults = minorFaults();
-  const auto start = Clock::now();
-  phaser.align(out);
-  return {msSince(start), minorFaults() - faults, phaser.getResult().diagnostics.times};
-}
-
-double median(std::vector<double> v)
-{
-  if (v.empty())
-    return 0.0;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 /** The pairs of \a file, read from its folder; false with a message when unreadable. */
 bool readPairs(const std::string& file, int max_pairs, std::vector<Pair>& pairs)
