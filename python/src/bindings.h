@@ -20,11 +20,6 @@ namespace pcl::phaser::python {
 
 namespace py = pybind11;
 
-/** \brief One align's answer for Python: the engine's result. */
-struct AlignResult {
-  PhaserResult result;
-};
-
 /** \brief A cloud converted from numpy: finite points and their channel values. */
 struct Cloud {
   Eigen::Matrix3Xd points;
@@ -52,13 +47,14 @@ PhaserParameters parametersFrom(const py::handle& params);
 bool usesIntensity(const PhaserParameters& params);
 
 /** \brief pcl::phaser::align on \a target and \a source with the GIL released. */
-AlignResult alignReleased(const Target& target, const SourceCloud& source,
-                          const Eigen::Matrix4d& guess, const PhaserParameters& params);
+PhaserResult alignReleased(const Target& target, const SourceCloud& source,
+                           const Eigen::Matrix4d& guess,
+                           const PhaserParameters& params);
 
 /** \brief The result's every field as a dict (visitResultState(), bit for bit) and
  *  back, for to_dict() and pickle. \throws py::value_error a field missing or wrong */
-py::dict resultState(const AlignResult& r);
-AlignResult resultFromState(const py::dict& state);
+py::dict resultState(const PhaserResult& r);
+PhaserResult resultFromState(const py::dict& state);
 
 void bindParameters(py::module_& m);
 void bindResult(py::module_& m);

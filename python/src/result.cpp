@@ -28,9 +28,8 @@ double rotationDeg(const Eigen::Matrix4d& T)
          M_PI;
 }
 
-std::string reprOf(const AlignResult& a)
+std::string reprOf(const PhaserResult& r)
 {
-  const PhaserResult& r = a.result;
   if (!r.error.empty())
     return "Result(error=" + std::string(py::repr(py::str(r.error))) + ")";
   const PhaserDiagnostics& d = r.diagnostics;
@@ -120,35 +119,27 @@ void bindResult(py::module_& m)
 {
   bindParts(m);
   bindDiagnostics(m);
-  using R = AlignResult;
+  using R = PhaserResult;
   py::class_<R>(m, "Result",
                 "What one align found: transformation (T_target_source, p_target = T "
                 "p_source), converged, covariance (6 x 6, rotation vector then "
                 "translation), the verification figures, hypotheses, stage timings; "
                 "error: why it was refused ('' on success).")
-      .def_property_readonly("error", [](const R& r) { return r.result.error; })
-      .def_property_readonly("transformation",
-                             [](const R& r) { return r.result.transformation; })
-      .def_property_readonly("converged", [](const R& r) { return r.result.converged; })
-      .def_property_readonly("covariance",
-                             [](const R& r) { return r.result.covariance; })
-      .def_property_readonly("projection_center",
-                             [](const R& r) { return r.result.projection_center; })
-      .def_property_readonly("chosen_hypothesis",
-                             [](const R& r) { return r.result.chosen_hypothesis; })
-      .def_property_readonly("lever_arm", [](const R& r) { return r.result.lever_arm; })
-      .def_property_readonly("translation_covariance",
-                             [](const R& r) { return r.result.translation_covariance; })
-      .def_property_readonly("fit_covariance",
-                             [](const R& r) { return r.result.fit_covariance; })
-      .def_property_readonly("diagnostics",
-                             [](const R& r) { return r.result.diagnostics; })
-      .def_property_readonly(
-          "verification", [](const R& r) { return r.result.diagnostics.verification; })
+      .def_readonly("error", &R::error)
+      .def_readonly("transformation", &R::transformation)
+      .def_readonly("converged", &R::converged)
+      .def_readonly("covariance", &R::covariance)
+      .def_readonly("projection_center", &R::projection_center)
+      .def_readonly("chosen_hypothesis", &R::chosen_hypothesis)
+      .def_readonly("lever_arm", &R::lever_arm)
+      .def_readonly("translation_covariance", &R::translation_covariance)
+      .def_readonly("fit_covariance", &R::fit_covariance)
+      .def_readonly("diagnostics", &R::diagnostics)
+      .def_property_readonly("verification",
+                             [](const R& r) { return r.diagnostics.verification; })
       .def_property_readonly("hypotheses",
-                             [](const R& r) { return r.result.diagnostics.hypotheses; })
-      .def_property_readonly("times",
-                             [](const R& r) { return r.result.diagnostics.times; })
+                             [](const R& r) { return r.diagnostics.hypotheses; })
+      .def_property_readonly("times", [](const R& r) { return r.diagnostics.times; })
       .def("__repr__", &reprOf)
       .def("to_dict", &resultState,
            "Every field as a dict, named as in pcl_phaser_align --json and the batch's "

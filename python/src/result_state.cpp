@@ -89,22 +89,22 @@ struct DictReader {
 
 } // namespace
 
-py::dict resultState(const AlignResult& r)
+py::dict resultState(const PhaserResult& r)
 {
   DictWriter writer;
-  visitResultState(r.result, writer);
+  visitResultState(r, writer);
   return writer.dict;
 }
 
-AlignResult resultFromState(const py::dict& state)
+PhaserResult resultFromState(const py::dict& state)
 {
-  AlignResult r;
+  PhaserResult r;
   try {
-    visitResultState(r.result, DictReader{state});
+    visitResultState(r, DictReader{state});
   } catch (const std::exception& e) { // a field missing or of another type
     throw py::value_error(std::string("pcl_phaser.Result: bad state: ") + e.what());
   }
-  const PhaserDiagnostics& d = r.result.diagnostics;
+  const PhaserDiagnostics& d = r.diagnostics;
   if (d.rotation_weights.size() != d.rotation_samples.size())
     throw py::value_error("pcl_phaser.Result: bad state: rotation weights");
   return r;

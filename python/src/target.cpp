@@ -49,8 +49,8 @@ SourceCloud sourceFor(const PyTarget& t, const py::handle& source)
 }
 
 /** \a source against \a t; the target's channels are fixed when it is made. */
-AlignResult alignWith(const PyTarget& t, const py::handle& source,
-                      const py::handle& guess, const py::handle& params)
+PhaserResult alignWith(const PyTarget& t, const py::handle& source,
+                       const py::handle& guess, const py::handle& params)
 {
   const PhaserParameters p = params.is_none() ? t.params : parametersFrom(params);
   const SourceCloud s = sourceFor(t, source);
@@ -59,8 +59,8 @@ AlignResult alignWith(const PyTarget& t, const py::handle& source,
 
 /** One align: intensity is fused when the parameters ask for it and both clouds have
  *  it (as pcl::PhaserRegistration fuses the channels both point types carry). */
-AlignResult alignOnce(const py::handle& source, const py::handle& target,
-                      const py::handle& guess, const py::handle& params)
+PhaserResult alignOnce(const py::handle& source, const py::handle& target,
+                       const py::handle& guess, const py::handle& params)
 {
   if (py::isinstance<PyTarget>(target))
     return alignWith(target.cast<const PyTarget&>(), source, guess, params);
@@ -92,13 +92,11 @@ py::array_t<double> pointsOf(const PyTarget& t)
 
 } // namespace
 
-AlignResult alignReleased(const Target& target, const SourceCloud& source,
-                          const Eigen::Matrix4d& guess, const PhaserParameters& params)
+PhaserResult alignReleased(const Target& target, const SourceCloud& source,
+                           const Eigen::Matrix4d& guess, const PhaserParameters& params)
 {
   py::gil_scoped_release released;
-  AlignResult r;
-  r.result = align(target, source, guess, params);
-  return r;
+  return align(target, source, guess, params);
 }
 
 void bindTarget(py::module_& m)
