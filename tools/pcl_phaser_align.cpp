@@ -90,29 +90,6 @@ bool loadCloud(const std::string& path, pcl::PCLPointCloud2& cloud)
   return (true);
 }
 
-/** \a params with the options the command line set. */
-pcl::phaser::PhaserParameters withOptions(pcl::phaser::PhaserParameters params,
-                                          const Options& opt)
-{
-  if (opt.bandwidth)
-    params.bandwidth = opt.bandwidth;
-  if (opt.grid)
-    params.spatial_grid_size = opt.grid;
-  if (opt.passes)
-    params.passes = opt.passes;
-  if (opt.threads >= 0 || opt.demo)
-    params.num_threads = opt.threads >= 0 ? opt.threads : default_demo_threads;
-  using Center = pcl::phaser::ProjectionCenter;
-  params.projection_center = opt.center == "centroid" ? Center::Centroid
-                             : opt.center == "auto"   ? Center::Automatic
-                                                      : Center::SensorOrigin;
-  if (opt.region[3] > 0.0)
-    params.region =
-        pcl::phaser::Region{opt.region[0], opt.region[1], opt.region[2], opt.region[3]};
-  params.max_tilt_deg = opt.max_tilt;
-  return params;
-}
-
 /** The global registration of \a source onto \a target into \a res.global and
  *  res.estimate. */
 template <typename PointT>
@@ -121,7 +98,7 @@ void registerGlobally(pcl::PhaserRegistration<PointT, PointT>& phaser,
                       const typename pcl::PointCloud<PointT>::Ptr& target,
                       const Options& opt, Result& res)
 {
-  const pcl::phaser::PhaserParameters params = withOptions(phaser.getParameters(), opt);
+  const pcl::phaser::PhaserParameters& params = opt.params;
   phaser.setParameters(params);
   phaser.setInputSource(source);
   phaser.setInputTarget(target);
@@ -133,7 +110,7 @@ void registerGlobally(pcl::PhaserRegistration<PointT, PointT>& phaser,
              params.bandwidth, params.spatial_grid_size, params.passes,
              static_cast<unsigned>(
                  pcl::phaser::resolveThreadCount(int(phaser.getNumberOfThreads()))),
-             opt.center.c_str());
+             pcl::phaser::centerName(params.projection_center));
   if (params.max_tilt_deg > 0.0)
     print_info("with a max tilt %g deg ", params.max_tilt_deg);
   TicToc tt;

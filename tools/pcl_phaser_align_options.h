@@ -9,8 +9,8 @@
 #pragma once
 
 #include "cloud_reading.h"
+#include "engine_options.h"
 #include "pcl_phaser_align_screenshot.h"
-#include "region_option.h"
 
 #include <pcl_phaser/core/parameters.h>
 
@@ -63,13 +63,10 @@ const double demo_icp_rre_deg = 0.1, demo_icp_rte_m = 0.02;
 
 struct Options {
   std::string source, target, output, overlay, screenshot, gt;
-  std::string center = "auto"; // sensor, centroid or auto
   bool demo = false, icp = false, icp_point = false, json = false;
-  int bandwidth = 0, grid = 0, passes = 0; // 0: the class default
-  int threads = -1;                        // -1: the class default (the demo: 2)
   double icp_distance = default_icp_distance;
-  double region[4] = {0, 0, 0, 0}; // x y z radius; radius 0: no position prior
-  double max_tilt = 0.0;           // degrees, 0: no gravity prior
+  pcl::phaser::PhaserParameters params; ///< the engine's (the demo: 2 threads)
+  pcl::phaser::EngineArguments engine;  ///< the engine options given
   int width = default_width, height = default_height, seed = default_seed;
 };
 
@@ -94,26 +91,15 @@ struct Spec {
   const char *name, *alias;
   bool has_value;
 };
-const Spec specs[] = {{"-b", "--bandwidth", true},
-                      {"--grid", nullptr, true},
-                      {"--passes", nullptr, true},
-                      {"--center", "--center", true},
-                      {"--max-tilt", nullptr, true},
-                      {"--threads", nullptr, true},
-                      {"--region", nullptr, true},
-                      {"-icp", "--icp", false},
-                      {"--icp-point", nullptr, false},
-                      {"--icp-dist", nullptr, true},
-                      {"-o", nullptr, true},
-                      {"-m", nullptr, true},
-                      {"--screenshot", nullptr, true},
-                      {"--size", nullptr, true},
-                      {"--gt", nullptr, true},
-                      {"--json", nullptr, false},
-                      {"--demo", nullptr, false},
-                      {"--seed", nullptr, true},
-                      {"--print-parameters", nullptr, false},
-                      {"-h", "--help", false}};
+/** \brief The tool's own options; the engine's: engine_options.h. */
+const Spec specs[] = {
+    {"-icp", "--icp", false},      {"--icp-point", nullptr, false},
+    {"--icp-dist", nullptr, true}, {"-o", nullptr, true},
+    {"-m", nullptr, true},         {"--screenshot", nullptr, true},
+    {"--size", nullptr, true},     {"--gt", nullptr, true},
+    {"--json", nullptr, false},    {"--demo", nullptr, false},
+    {"--seed", nullptr, true},     {"--print-parameters", nullptr, false},
+    {"-h", "--help", false}};
 
 inline const Spec* findSpec(const char* arg)
 {
@@ -151,8 +137,12 @@ inline bool hasExtension(const std::string& path, const char* ext)
 inline int parseFilesAndSwitches(int argc, char** argv, Options& opt)
 {
   std::vector<std::string> files;
+  std::string error;
   for (int i = 1; i < argc; ++i) {
-    if (const Spec* s = findSpec(argv[i])) {
+    if (pcl::phaser::takeEngineOption(argc, argv, i, opt.engine, error)) {
+      if (!error.empty())
+        return (fail(kUsage, "%s (see -h).", error.c_str()));
+    } else if (const Spec* s = findSpec(argv[i])) {
       if (s->has_value && ++i >= argc)
         return (fail(kUsage, "Option %s needs a value (see -h).", argv[i - 1]));
     } else if (argv[i][0] == '-' && argv[i][1] != '\0')
@@ -180,41 +170,23 @@ inline int parseFilesAndSwitches(int argc, char** argv, Options& opt)
   return (kOk);
 }
 
-/** \brief The range of PhaserParameters field \a name as text, e.g. "2..256". */
-inline std::string rangeOf(const char* name)
-{
-  const pcl::phaser::ParameterRange* r = pcl::phaser::findParameterRange(name);
-  return (std::to_string(int(r->min)) + ".." + std::to_string(int(r->max)));
-}
-
-/** \brief Parse the integer options (-b, --grid, --passes, --threads, --seed), each
- * checked against its range (pcl::phaser::kParameterRanges for the settings).
+/** \brief The engine options into \a opt.params, range-checked, and --seed.
  * \return kOk or kUsage (after fail()) */
-inline int parseIntegerOptions(int argc, char** argv, Options& opt)
+inline int parseNumberOptions(int argc, char** argv, Options& opt)
 {
-  const struct {
-    const Spec& spec;
-    const char* field; // of PhaserParameters, or null
-    int& value;
-  } ints[] = {{*findSpec("-b"), "bandwidth", opt.bandwidth},
-              {*findSpec("--grid"), "spatial_grid_size", opt.grid},
-              {*findSpec("--passes"), "passes", opt.passes},
-              {*findSpec("--threads"), "num_threads", opt.threads},
-              {*findSpec("--seed"), nullptr, opt.seed}};
+  if (opt.demo)
+    opt.params.num_threads = default_demo_threads;
+  const std::string error = pcl::phaser::setEngineOptions(opt.engine, opt.params);
+  if (!error.empty())
+    return (fail(kUsage, "%s.", error.c_str()));
   std::string text;
-  for (const auto& o : ints) {
-    const auto* r = o.field ? pcl::phaser::findParameterRange(o.field) : nullptr;
-    const long lo = r ? long(r->min) : 0, hi = r ? long(r->max) : INT_MAX;
-    long v = 0;
-    if (!optionValue(argc, argv, o.spec, text))
-      continue;
-    if (!toLong(text, v) || v < lo || v > hi)
-      return (fail(kUsage,
-                   "Invalid value '%s' for %s: expected an integer in %ld..%ld%s%s%s.",
-                   text.c_str(), o.spec.name, lo, hi, r ? " (" : "",
-                   r ? r->meaning : "", r ? ")" : ""));
-    o.value = static_cast<int>(v);
-  }
+  long v = 0;
+  if (optionValue(argc, argv, *findSpec("--seed"), text) &&
+      (!toLong(text, v) || v < 0 || v > INT_MAX))
+    return (fail(kUsage, "Invalid value '%s' for --seed: expected an integer in 0..%d.",
+                 text.c_str(), INT_MAX));
+  if (!text.empty())
+    opt.seed = static_cast<int>(v);
   return (kOk);
 }
 
@@ -234,52 +206,11 @@ inline std::string parameterTable()
   return (out);
 }
 
-/** \brief Parse --region X,Y,Z,R into \a opt.region (parseRegion).
- *  \return kOk or kUsage (after fail()) */
-inline int parseRegion(const std::string& text, Options& opt)
-{
-  const auto region = pcl::phaser::parseRegion(text);
-  if (!region)
-    return (fail(kUsage, "%s.", pcl::phaser::regionUsage(text).c_str()));
-  std::copy(region->begin(), region->end(), opt.region);
-  return (kOk);
-}
-
-/** \brief Parse --max-tilt DEG into \a opt, checked against the range of
- * PhaserParameters::max_tilt_deg.
+/** \brief Parse the other valued options: --icp-dist, --size.
  * \return kOk or kUsage (after fail()) */
-inline int parseMaxTilt(int argc, char** argv, Options& opt)
-{
-  std::string text;
-  if (!optionValue(argc, argv, *findSpec("--max-tilt"), text))
-    return (kOk);
-  const pcl::phaser::ParameterRange* r =
-      pcl::phaser::findParameterRange("max_tilt_deg");
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !(v >= r->min && v <= r->max))
-    return (fail(kUsage, "Invalid --max-tilt '%s': expected degrees in %g..%g (%s).",
-                 text.c_str(), r->min, r->max, r->meaning));
-  opt.max_tilt = v;
-  return (kOk);
-}
-
-/** \brief Parse the other valued registration options: --center, --max-tilt,
- *  --region, --icp-dist, --size. \return kOk or kUsage (after fail()) */
 inline int parseValueOptions(int argc, char** argv, Options& opt)
 {
   std::string text;
-  if (optionValue(argc, argv, *findSpec("--region"), text) &&
-      parseRegion(text, opt) != kOk)
-    return (kUsage);
-  if (parseMaxTilt(argc, argv, opt) != kOk)
-    return (kUsage);
-  if (optionValue(argc, argv, *findSpec("--center"), text)) {
-    if (text != "sensor" && text != "centroid" && text != "auto")
-      return (fail(kUsage, "Invalid --center '%s': expected sensor, centroid or auto.",
-                   text.c_str()));
-    opt.center = text;
-  }
   if (optionValue(argc, argv, *findSpec("--icp-dist"), text)) {
     char* end = nullptr;
     opt.icp_distance = std::strtod(text.c_str(), &end);
@@ -331,14 +262,14 @@ inline int parsePathOptions(int argc, char** argv, Options& opt)
 }
 
 /** \brief Parse the whole command line into \a opt, checking in this order: the
- * files and switches, the integer options, the other values, the paths. The first
- * problem is reported with fail() and ends the parsing.
- * \return kOk, or the exit code of the first problem (kUsage or kOutput) */
+ * files and switches, the engine options and --seed, the other values, the paths. The
+ * first problem is reported with fail() and ends the parsing. \return kOk, or the exit
+ * code of the first problem (kUsage or kOutput) */
 inline int parseOptions(int argc, char** argv, Options& opt)
 {
   int code = parseFilesAndSwitches(argc, argv, opt);
   if (code == kOk)
-    code = parseIntegerOptions(argc, argv, opt);
+    code = parseNumberOptions(argc, argv, opt);
   if (code == kOk)
     code = parseValueOptions(argc, argv, opt);
   if (code == kOk)

@@ -1,0 +1,250 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ */
+/** \file engine_options.h
+ * \brief The engine settings of pcl_phaser_align and pcl_phaser_batch: one option per
+ * row of pcl::phaser::kParameterRanges (`--<name with - for _>`, the documented ones
+ * also under a short alias: -b, --grid, --threads, --max-tilt), plus --center and
+ * --region X,Y,Z,R. Both tools parse, range-check and document them from this table.
+ */
+#pragma once
+
+#include <pcl_phaser/core/parameters.h>
+
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace pcl {
+namespace phaser {
+
+/** \brief One engine option: a row of kParameterRanges, or --center / --region. */
+struct EngineOption {
+  std::string flag;            ///< the long name, e.g. --bandwidth
+  const char* alias;           ///< a short name, e.g. -b; null when none
+  const char* value_name;      ///< the value in the help, e.g. B
+  const ParameterRange* range; ///< the row; null for --center and --region
+};
+
+/** \brief The short names and help values of the documented settings. */
+struct EngineAlias {
+  const char *row, *alias, *value_name;
+};
+inline constexpr EngineAlias kEngineAliases[] = {{"bandwidth", "-b", "B"},
+                                                 {"spatial_grid_size", "--grid", "N"},
+                                                 {"passes", nullptr, "K"},
+                                                 {"num_threads", "--threads", "T"},
+                                                 {"max_tilt_deg", "--max-tilt", "DEG"}};
+
+/** \brief The option of row \a r: its name with - for _, alias and help value. */
+inline EngineOption engineOptionOf(const ParameterRange& r)
+{
+  EngineOption o{"--" + std::string(r.name), nullptr, r.integer ? "N" : "X", &r};
+  for (char& c : o.flag)
+    c = c == '_' ? '-' : c;
+  if (!std::strcmp(r.unit, "m"))
+    o.value_name = "M";
+  for (const EngineAlias& a : kEngineAliases)
+    if (!std::strcmp(a.row, r.name))
+      o.alias = a.alias, o.value_name = a.value_name;
+  return o;
+}
+
+/** \brief Every engine option: --center, --region, then kParameterRanges' rows. */
+inline const std::vector<EngineOption>& engineOptions()
+{
+  static const std::vector<EngineOption> options = [] {
+    std::vector<EngineOption> out = {{"--center", nullptr, "MODE", nullptr},
+                                     {"--region", nullptr, "X,Y,Z,R", nullptr}};
+    for (const ParameterRange& r : kParameterRanges)
+      out.push_back(engineOptionOf(r));
+    return out;
+  }();
+  return options;
+}
+
+/** \brief The index in engineOptions() of \a flag (a name or alias); -1: none. */
+inline int findEngineOption(const std::string& flag)
+{
+  const std::vector<EngineOption>& options = engineOptions();
+  for (std::size_t k = 0; k < options.size(); ++k)
+    if (flag == options[k].flag || (options[k].alias && flag == options[k].alias))
+      return static_cast<int>(k);
+  return -1;
+}
+
+/** \brief The name of a projection center, as --center takes it. */
+inline const char* centerName(ProjectionCenter center)
+{
+  return center == ProjectionCenter::SensorOrigin ? "sensor"
+         : center == ProjectionCenter::Centroid   ? "centroid"
+                                                  : "auto";
+}
+
+/** \brief X,Y,Z,R (meters, the target's frame) of a position prior, each finite and in
+ *  the range of its PhaserParameters field and R > 0; empty when \a text is not. */
+inline std::optional<Region> parseRegion(const std::string& text)
+{
+  static const char* const fields[4] = {"region_x", "region_y", "region_z",
+                                        "region_radius"};
+  std::array<double, 4> v{};
+  const char* p = text.c_str();
+  for (int k = 0; k < 4; ++k) {
+    char* end = nullptr;
+    v[k] = std::strtod(p, &end);
+    const ParameterRange* range = findParameterRange(fields[k]);
+    const bool last = k == 3;
+    if (end == p || *end != (last ? '\0' : ',') || !std::isfinite(v[k]) ||
+        v[k] < range->min || v[k] > range->max || (last && !(v[k] > 0.0)))
+      return std::nullopt;
+    p = end + 1;
+  }
+  return Region{v[0], v[1], v[2], v[3]};
+}
+
+/** \brief The range of row \a r as text, e.g. "2..256" or "0..1e+05 m". */
+inline std::string rangeText(const ParameterRange& r)
+{
+  char text[64];
+  std::snprintf(text, sizeof(text), "%g..%g%s%s", r.min, r.max, *r.unit ? " " : "",
+                r.unit);
+  return text;
+}
+
+/** \brief Sets row \a r of \a p from \a text given as \a flag; empty, or the message
+ *  naming the option, its range and meaning. */
+inline std::string setFromText(const ParameterRange& r, const std::string& flag,
+                               const std::string& text, PhaserParameters& p)
+{
+  char* end = nullptr;
+  errno = 0;
+  const double v = r.integer ? double(std::strtol(text.c_str(), &end, 10))
+                             : std::strtod(text.c_str(), &end);
+  const bool ok = !text.empty() && *end == '\0' && errno == 0 && std::isfinite(v) &&
+                  v >= r.min && v <= r.max;
+  if (ok) {
+    r.set(p, v);
+    return {};
+  }
+  char range[64];
+  std::snprintf(range, sizeof(range), "%g..%g (", r.min, r.max);
+  if (r.integer)
+    return "Invalid value '" + text + "' for " + flag + ": expected an integer in " +
+           range + r.meaning + ")";
+  const char* what = !std::strcmp(r.unit, "deg") ? "degrees"
+                     : !std::strcmp(r.unit, "m") ? "meters"
+                                                 : "a number";
+  return "Invalid " + flag + " '" + text + "': expected " + what + " in " + range +
+         r.meaning + ")";
+}
+
+/** \brief Sets \a p from engine option \a o given as \a flag with \a text; empty, or
+ *  the message naming the option and what it takes. */
+inline std::string setEngineOption(const EngineOption& o, const std::string& flag,
+                                   const std::string& text, PhaserParameters& p)
+{
+  if (o.range)
+    return setFromText(*o.range, flag, text, p);
+  if (o.flag == "--region") {
+    if (const std::optional<Region> region = parseRegion(text)) {
+      p.region = region;
+      return {};
+    }
+    char max[32];
+    std::snprintf(max, sizeof(max), "%g", findParameterRange("region_radius")->max);
+    return "Invalid --region '" + text +
+           "': expected X,Y,Z,R in meters in the target's frame, coordinates within "
+           "1e6 m and 0 < R <= " +
+           max;
+  }
+  for (const ProjectionCenter c :
+       {ProjectionCenter::SensorOrigin, ProjectionCenter::Centroid,
+        ProjectionCenter::Automatic})
+    if (text == centerName(c))
+      return p.projection_center = c, std::string();
+  return "Invalid --center '" + text + "': expected sensor, centroid or auto";
+}
+
+/** \brief The engine options of one command line by their index in engineOptions():
+ *  the flag as given and its value. */
+using EngineArguments = std::map<int, std::pair<std::string, std::string>>;
+
+/** \brief When \a argv[i] is an engine option, records it with its value in \a args
+ *  and moves \a i to the value. \return false when it is none; else true with
+ *  \a error empty, or saying that the value is missing or the option repeated. */
+inline bool takeEngineOption(int argc, char** argv, int& i, EngineArguments& args,
+                             std::string& error)
+{
+  const int k = findEngineOption(argv[i]);
+  if (k < 0)
+    return false;
+  if (i + 1 >= argc)
+    error = std::string("Option ") + argv[i] + " needs a value";
+  else if (args.count(k))
+    error = std::string("Option ") + argv[i] + " is given twice";
+  else {
+    args[k] = {argv[i], argv[i + 1]};
+    ++i;
+  }
+  return true;
+}
+
+/** \brief Sets \a p from \a args in table order (--region before its fields), then
+ *  checks the whole with validateParameters(). \return empty, or the first problem */
+inline std::string setEngineOptions(const EngineArguments& args, PhaserParameters& p)
+{
+  for (const auto& [k, given] : args) {
+    const std::string error =
+        setEngineOption(engineOptions()[k], given.first, given.second, p);
+    if (!error.empty())
+      return error;
+  }
+  const std::string problem = validateParameters(p);
+  return problem.empty() ? problem : "Invalid engine settings: " + problem;
+}
+
+/** \brief The help lines of every engine option with the defaults \a d, e.g.
+ *  "    -b B, --bandwidth   = spherical bandwidth ...; 2..256 (default: 64)". */
+inline std::string engineOptionsHelp(const PhaserParameters& d)
+{
+  std::string out;
+  char line[512];
+  for (const EngineOption& o : engineOptions()) {
+    const std::string name =
+        o.alias ? std::string(o.alias) + " " + o.value_name + ", " + o.flag
+                : o.flag + " " + o.value_name;
+    std::string text;
+    if (o.range) {
+      std::snprintf(line, sizeof(line), " (default: %g)", o.range->value(d));
+      text = std::string(o.range->meaning) + "; " + rangeText(*o.range) + line;
+    } else if (o.flag == "--center")
+      text = std::string("projection center: sensor (each cloud's origin, for LiDAR "
+                         "scans), centroid, or auto (sensor for scans\n") +
+             std::string(26, ' ') +
+             "seen from their origin) (default: " + centerName(d.projection_center) +
+             ")";
+    else
+      text = "position prior: the source's sensor within R m of (X, Y, Z) in the "
+             "target's frame; only target\n" +
+             std::string(26, ' ') +
+             "points a sensor there could see are used, no pose outside is returned";
+    // A long name on a line of its own, the text below it.
+    const char* gap = name.size() > 19 ? "\n                       " : "";
+    std::snprintf(line, sizeof(line), "    %-19s%s = %s\n", name.c_str(), gap,
+                  text.c_str());
+    out += line;
+  }
+  return out;
+}
+
+} // namespace phaser
+} // namespace pcl
