@@ -18,6 +18,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <thread>
 #include <unistd.h>
 
@@ -73,6 +74,16 @@ std::string runFingerprint(const RunSettings& settings)
     std::snprintf(text, sizeof(text), ", tilt %.17g", p.max_tilt_deg);
     fingerprint += text;
   }
+  // Every other row of kParameterRanges (an engine option) not at its default.
+  static const std::set<std::string> listed = {
+      "bandwidth", "spatial_grid_size", "voxel_size", "passes",        "num_threads",
+      "region_x",  "region_y",          "region_z",   "region_radius", "max_tilt_deg"};
+  const PhaserParameters d;
+  for (const ParameterRange& r : kParameterRanges)
+    if (!listed.count(r.name) && r.value(p) != r.value(d)) {
+      std::snprintf(text, sizeof(text), ", %s %.17g", r.name, r.value(p));
+      fingerprint += text;
+    }
   return fingerprint;
 }
 

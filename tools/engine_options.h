@@ -12,14 +12,13 @@
 
 #include <pcl_phaser/core/parameters.h>
 
-#include <array>
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <map>
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -90,27 +89,6 @@ inline const char* centerName(ProjectionCenter center)
                                                   : "auto";
 }
 
-/** \brief X,Y,Z,R (meters, the target's frame) of a position prior, each finite and in
- *  the range of its PhaserParameters field and R > 0; empty when \a text is not. */
-inline std::optional<Region> parseRegion(const std::string& text)
-{
-  static const char* const fields[4] = {"region_x", "region_y", "region_z",
-                                        "region_radius"};
-  std::array<double, 4> v{};
-  const char* p = text.c_str();
-  for (int k = 0; k < 4; ++k) {
-    char* end = nullptr;
-    v[k] = std::strtod(p, &end);
-    const ParameterRange* range = findParameterRange(fields[k]);
-    const bool last = k == 3;
-    if (end == p || *end != (last ? '\0' : ',') || !std::isfinite(v[k]) ||
-        v[k] < range->min || v[k] > range->max || (last && !(v[k] > 0.0)))
-      return std::nullopt;
-    p = end + 1;
-  }
-  return Region{v[0], v[1], v[2], v[3]};
-}
-
 /** \brief The range of row \a r as text, e.g. "2..256" or "0..1e+05 m". */
 inline std::string rangeText(const ParameterRange& r)
 {
@@ -147,6 +125,28 @@ inline std::string setFromText(const ParameterRange& r, const std::string& flag,
          r.meaning + ")";
 }
 
+/** \brief --region X,Y,Z,R (meters, the target's frame) into \a p as the rows
+ *  region_x, _y, _z and _radius take them, R > 0. \return false when it is not */
+inline bool setRegion(const std::string& text, PhaserParameters& p)
+{
+  PhaserParameters q;
+  q.region = Region{};
+  std::size_t at = 0;
+  for (const char* row : {"region_x", "region_y", "region_z", "region_radius"}) {
+    const std::size_t end =
+        std::min(text.find(',', std::min(at, text.size())), text.size());
+    if (at > end ||
+        !setFromText(*findParameterRange(row), "", text.substr(at, end - at), q)
+             .empty())
+      return false;
+    at = end + 1;
+  }
+  if (at != text.size() + 1 || !q.region) // more numbers, or R = 0
+    return false;
+  p.region = q.region;
+  return true;
+}
+
 /** \brief Sets \a p from engine option \a o given as \a flag with \a text; empty, or
  *  the message naming the option and what it takes. */
 inline std::string setEngineOption(const EngineOption& o, const std::string& flag,
@@ -155,10 +155,8 @@ inline std::string setEngineOption(const EngineOption& o, const std::string& fla
   if (o.range)
     return setFromText(*o.range, flag, text, p);
   if (o.flag == "--region") {
-    if (const std::optional<Region> region = parseRegion(text)) {
-      p.region = region;
+    if (setRegion(text, p))
       return {};
-    }
     char max[32];
     std::snprintf(max, sizeof(max), "%g", findParameterRange("region_radius")->max);
     return "Invalid --region '" + text +

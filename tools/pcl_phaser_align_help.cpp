@@ -16,20 +16,6 @@ using namespace pcl::phaser::align_tool;
 
 namespace {
 
-/** The registration options of the help, with the class defaults. */
-void printRegistrationHelp()
-{
-  const pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> d; // the class defaults
-  print_info(
-      "  Registers SOURCE onto TARGET (.pcd, .ply or KITTI .bin) with PHASER and "
-      "prints\n  T_target_source (p_target = T * p_source). Engine settings "
-      "(doc/parameters.md; --threads 0: here %u, the demo's default: %d):\n%s"
-      "    --print-parameters  = print the range of every setting as a Markdown "
-      "table\n",
-      static_cast<unsigned>(pcl::phaser::resolveThreadCount(0)), default_demo_threads,
-      pcl::phaser::engineOptionsHelp(d.getParameters()).c_str());
-}
-
 /** The ICP and output options of the help. */
 void printOutputHelp()
 {
@@ -67,7 +53,15 @@ void printHelp(const char* program)
   print_error("Syntax is: %s SOURCE TARGET <options>\n"
               "       or: %s [--demo] <options>\n",
               program, program);
-  printRegistrationHelp();
+  const pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> d; // the class defaults
+  print_info(
+      "  Registers SOURCE onto TARGET (.pcd, .ply or KITTI .bin) with PHASER and "
+      "prints\n  T_target_source (p_target = T * p_source). Engine settings "
+      "(doc/parameters.md; --threads 0: here %u, the demo's default: %d):\n%s"
+      "    --print-parameters  = print the range of every setting as a Markdown "
+      "table\n",
+      static_cast<unsigned>(pcl::phaser::resolveThreadCount(0)), default_demo_threads,
+      pcl::phaser::engineOptionsHelp(d.getParameters()).c_str());
   printOutputHelp();
   print_info(
       "    --demo              = the embedded demo, also run with no arguments: a "

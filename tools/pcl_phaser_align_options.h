@@ -12,8 +12,6 @@
 #include "engine_options.h"
 #include "pcl_phaser_align_screenshot.h"
 
-#include <pcl_phaser/core/parameters.h>
-
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 

@@ -21,9 +21,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <iostream>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -107,36 +107,26 @@ struct Given : std::map<std::string, std::string> {
 
 int collect(int argc, char** argv, Given& given)
 {
-  static const std::map<std::string, bool> takes_value = {{"--pairs", true},
-                                                          {"--scans", true},
-                                                          {"--poses", true},
-                                                          {"--radius", true},
-                                                          {"--min-gap", true},
-                                                          {"--print-pairs", false},
-                                                          {"--out", true},
-                                                          {"--g2o", true},
-                                                          {"--shard", true},
-                                                          {"--cache", true},
-                                                          {"--jobs", true},
-                                                          {"--odometry", false},
-                                                          {"--odometry-sigma", true},
-                                                          {"-h", false},
-                                                          {"--help", false}};
+  static const std::set<std::string> switches = {"--print-pairs", "--odometry", "-h",
+                                                 "--help"};
+  static const std::set<std::string> valued = {
+      "--pairs", "--scans", "--poses", "--radius", "--min-gap",       "--out",
+      "--g2o",   "--shard", "--cache", "--jobs",   "--odometry-sigma"};
   std::string error;
   for (int i = 1; i < argc; ++i) {
+    const std::string name = argv[i];
+    const bool has_value = valued.count(name) > 0;
     if (pcl::phaser::takeEngineOption(argc, argv, i, given.engine, error)) {
       if (!error.empty())
         return usage(error);
-      continue;
-    }
-    const auto spec = takes_value.find(argv[i]);
-    if (spec == takes_value.end())
-      return usage(std::string("Unknown argument '") + argv[i] + "'");
-    if (spec->second && i + 1 >= argc)
-      return usage("Option " + spec->first + " needs a value");
-    if (given.count(spec->first))
-      return usage("Option " + spec->first + " is given twice");
-    given[spec->first] = spec->second ? argv[++i] : "";
+    } else if (!has_value && !switches.count(name))
+      return usage("Unknown argument '" + name + "'");
+    else if (has_value && i + 1 >= argc)
+      return usage("Option " + name + " needs a value");
+    else if (given.count(name))
+      return usage("Option " + name + " is given twice");
+    else
+      given[name] = has_value ? argv[++i] : "";
   }
   return batch::kOk;
 }
