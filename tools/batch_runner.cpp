@@ -5,6 +5,7 @@
 #include "batch_progress.h"
 #include "batch_records.h"
 #include "batch_runner.h"
+#include "engine_options.h"
 
 #include <pcl_phaser/core/warm_up.h>
 
@@ -57,12 +58,11 @@ int failWith(int code, const std::string& reason)
 std::string runFingerprint(const RunSettings& settings)
 {
   const PhaserParameters& p = settings.params;
-  const char* centers[] = {"sensor", "centroid", "auto"};
   char text[160];
   std::snprintf(text, sizeof(text),
                 "shard %d/%d, B %d, grid %d, voxel %.17g, passes %d, %s",
                 settings.shard, settings.shards, p.bandwidth, p.spatial_grid_size,
-                p.voxel_size, p.passes, centers[static_cast<int>(p.projection_center)]);
+                p.voxel_size, p.passes, centerName(p.projection_center));
   std::string fingerprint = text;
   // The priors, only when set (records written without them keep their fingerprint).
   if (p.region) {

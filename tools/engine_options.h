@@ -19,6 +19,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,16 +35,6 @@ struct EngineOption {
   const ParameterRange* range; ///< the row; null for --center and --region
 };
 
-/** \brief The short names and help values of the documented settings. */
-struct EngineAlias {
-  const char *row, *alias, *value_name;
-};
-inline constexpr EngineAlias kEngineAliases[] = {{"bandwidth", "-b", "B"},
-                                                 {"spatial_grid_size", "--grid", "N"},
-                                                 {"passes", nullptr, "K"},
-                                                 {"num_threads", "--threads", "T"},
-                                                 {"max_tilt_deg", "--max-tilt", "DEG"}};
-
 /** \brief The option of row \a r: its name with - for _, alias and help value. */
 inline EngineOption engineOptionOf(const ParameterRange& r)
 {
@@ -52,9 +43,15 @@ inline EngineOption engineOptionOf(const ParameterRange& r)
     c = c == '_' ? '-' : c;
   if (!std::strcmp(r.unit, "m"))
     o.value_name = "M";
-  for (const EngineAlias& a : kEngineAliases)
-    if (!std::strcmp(a.row, r.name))
-      o.alias = a.alias, o.value_name = a.value_name;
+  // The short names and help values of the documented settings.
+  static const char* const aliases[][3] = {{"bandwidth", "-b", "B"},
+                                           {"spatial_grid_size", "--grid", "N"},
+                                           {"passes", nullptr, "K"},
+                                           {"num_threads", "--threads", "T"},
+                                           {"max_tilt_deg", "--max-tilt", "DEG"}};
+  for (const auto& a : aliases)
+    if (!std::strcmp(a[0], r.name))
+      o.alias = a[1], o.value_name = a[2];
   return o;
 }
 
@@ -89,6 +86,15 @@ inline const char* centerName(ProjectionCenter center)
                                                   : "auto";
 }
 
+/** \brief \a text as an integer in \a lo..\a hi into \a v; false when it is not. */
+inline bool parseInteger(const std::string& text, long lo, long hi, long& v)
+{
+  char* end = nullptr;
+  errno = 0;
+  v = std::strtol(text.c_str(), &end, 10);
+  return !text.empty() && *end == '\0' && errno == 0 && v >= lo && v <= hi;
+}
+
 /** \brief The range of row \a r as text, e.g. "2..256" or "0..1e+05 m". */
 inline std::string rangeText(const ParameterRange& r)
 {
@@ -104,15 +110,12 @@ inline std::string setFromText(const ParameterRange& r, const std::string& flag,
                                const std::string& text, PhaserParameters& p)
 {
   char* end = nullptr;
-  errno = 0;
-  const double v = r.integer ? double(std::strtol(text.c_str(), &end, 10))
-                             : std::strtod(text.c_str(), &end);
-  const bool ok = !text.empty() && *end == '\0' && errno == 0 && std::isfinite(v) &&
-                  v >= r.min && v <= r.max;
-  if (ok) {
-    r.set(p, v);
-    return {};
-  }
+  long n = 0;
+  const double v = r.integer ? 0.0 : std::strtod(text.c_str(), &end);
+  if (r.integer ? parseInteger(text, long(r.min), long(r.max), n)
+                : !text.empty() && *end == '\0' && std::isfinite(v) && v >= r.min &&
+                      v <= r.max)
+    return r.set(p, r.integer ? double(n) : v), std::string();
   char range[64];
   std::snprintf(range, sizeof(range), "%g..%g (", r.min, r.max);
   if (r.integer)
@@ -196,6 +199,46 @@ inline bool takeEngineOption(int argc, char** argv, int& i, EngineArguments& arg
   return true;
 }
 
+/** \brief A command line: the tool's options by name (a switch maps to ""), the
+ *  engine's, and the other arguments (files). */
+struct CommandLine : std::map<std::string, std::string> {
+  EngineArguments engine;
+  std::vector<std::string> files;
+  /** \brief The value of option \a name into \a value; false when not given. */
+  bool value(const std::string& name, std::string& value) const
+  {
+    const auto it = find(name);
+    return it != end() ? (value = it->second, true) : false;
+  }
+};
+
+/** \brief Collects \a argv into \a line: the engine options, the tool's \a switches
+ *  and \a valued options, each once, and the files. \return empty, or the problem */
+inline std::string collectArguments(int argc, char** argv,
+                                    const std::set<std::string>& switches,
+                                    const std::set<std::string>& valued,
+                                    CommandLine& line)
+{
+  std::string error;
+  for (int i = 1; i < argc && error.empty(); ++i) {
+    const std::string name = argv[i];
+    const bool has_value = valued.count(name) > 0;
+    if (takeEngineOption(argc, argv, i, line.engine, error))
+      continue;
+    if (!has_value && !switches.count(name)) {
+      if (name.size() > 1 && name[0] == '-')
+        error = "Unknown argument '" + name + "'";
+      line.files.push_back(name);
+    } else if (has_value && i + 1 >= argc)
+      error = "Option " + name + " needs a value";
+    else if (line.count(name))
+      error = "Option " + name + " is given twice";
+    else
+      line[name] = has_value ? argv[++i] : "";
+  }
+  return error;
+}
+
 /** \brief Sets \a p from \a args in table order (--region before its fields), then
  *  checks the whole with validateParameters(). \return empty, or the first problem */
 inline std::string setEngineOptions(const EngineArguments& args, PhaserParameters& p)
@@ -225,16 +268,14 @@ inline std::string engineOptionsHelp(const PhaserParameters& d)
       std::snprintf(line, sizeof(line), " (default: %g)", o.range->value(d));
       text = std::string(o.range->meaning) + "; " + rangeText(*o.range) + line;
     } else if (o.flag == "--center")
-      text = std::string("projection center: sensor (each cloud's origin, for LiDAR "
-                         "scans), centroid, or auto (sensor for scans\n") +
-             std::string(26, ' ') +
-             "seen from their origin) (default: " + centerName(d.projection_center) +
-             ")";
+      text = std::string("projection center: sensor (each cloud's origin: scans), "
+                         "centroid, or auto (sensor when they look like scans) "
+                         "(default: ") +
+             centerName(d.projection_center) + ")";
     else
-      text = "position prior: the source's sensor within R m of (X, Y, Z) in the "
-             "target's frame; only target\n" +
-             std::string(26, ' ') +
-             "points a sensor there could see are used, no pose outside is returned";
+      text =
+          "position prior: the source's sensor within R m of (X, Y, Z), target frame "
+          "(sets the region_* rows)";
     // A long name on a line of its own, the text below it.
     const char* gap = name.size() > 19 ? "\n                       " : "";
     std::snprintf(line, sizeof(line), "    %-19s%s = %s\n", name.c_str(), gap,

@@ -26,6 +26,7 @@
 #include <pcl_phaser/phaser_registration.h>
 
 #include <pcl/common/transforms.h>
+#include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 #include <pcl/console/time.h>
 

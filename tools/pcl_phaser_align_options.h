@@ -3,7 +3,7 @@
 //
 /** \file pcl_phaser_align_options.h
  * \brief The command line of `pcl_phaser_align`: exit codes, defaults, the Options
- * and their parsing with pcl::console::parse_argument / find_switch. Every problem is
+ * and their parsing (the engine's options: engine_options.h). Every problem is
  * reported with print_error() and turned into an exit code, never an exception.
  */
 #pragma once
@@ -12,16 +12,15 @@
 #include "engine_options.h"
 #include "pcl_phaser_align_screenshot.h"
 
-#include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 
-#include <cerrno>
 #include <climits>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <set>
 #include <string>
 #include <strings.h>
 #include <vector>
@@ -64,7 +63,7 @@ struct Options {
   bool demo = false, icp = false, icp_point = false, json = false;
   double icp_distance = default_icp_distance;
   pcl::phaser::PhaserParameters params; ///< the engine's (the demo: 2 threads)
-  pcl::phaser::EngineArguments engine;  ///< the engine options given
+  pcl::phaser::CommandLine line;        ///< the options and files given
   int width = default_width, height = default_height, seed = default_seed;
 };
 
@@ -85,43 +84,6 @@ inline int fail(int code, const char* format, ...)
   return (code);
 }
 
-struct Spec {
-  const char *name, *alias;
-  bool has_value;
-};
-/** \brief The tool's own options; the engine's: engine_options.h. */
-const Spec specs[] = {
-    {"-icp", "--icp", false},      {"--icp-point", nullptr, false},
-    {"--icp-dist", nullptr, true}, {"-o", nullptr, true},
-    {"-m", nullptr, true},         {"--screenshot", nullptr, true},
-    {"--size", nullptr, true},     {"--gt", nullptr, true},
-    {"--json", nullptr, false},    {"--demo", nullptr, false},
-    {"--seed", nullptr, true},     {"--print-parameters", nullptr, false},
-    {"-h", "--help", false}};
-
-inline const Spec* findSpec(const char* arg)
-{
-  for (const Spec& s : specs)
-    if (!std::strcmp(arg, s.name) || (s.alias && !std::strcmp(arg, s.alias)))
-      return (&s);
-  return (nullptr);
-}
-
-/** \brief The value of an option under its name or alias; false when absent. */
-inline bool optionValue(int argc, char** argv, const Spec& s, std::string& value)
-{
-  return (parse_argument(argc, argv, s.name, value) >= 0 ||
-          (s.alias && parse_argument(argc, argv, s.alias, value) >= 0));
-}
-
-inline bool toLong(const std::string& text, long& value)
-{
-  char* end = nullptr;
-  errno = 0;
-  value = std::strtol(text.c_str(), &end, 10);
-  return (!text.empty() && *end == '\0' && errno == 0);
-}
-
 inline bool hasExtension(const std::string& path, const char* ext)
 {
   const std::size_t n = std::strlen(ext);
@@ -134,25 +96,20 @@ inline bool hasExtension(const std::string& path, const char* ext)
  * \return kOk or kUsage (after fail()) */
 inline int parseFilesAndSwitches(int argc, char** argv, Options& opt)
 {
-  std::vector<std::string> files;
-  std::string error;
-  for (int i = 1; i < argc; ++i) {
-    if (pcl::phaser::takeEngineOption(argc, argv, i, opt.engine, error)) {
-      if (!error.empty())
-        return (fail(kUsage, "%s (see -h).", error.c_str()));
-    } else if (const Spec* s = findSpec(argv[i])) {
-      if (s->has_value && ++i >= argc)
-        return (fail(kUsage, "Option %s needs a value (see -h).", argv[i - 1]));
-    } else if (argv[i][0] == '-' && argv[i][1] != '\0')
-      return (fail(kUsage, "Unknown option '%s' (see -h).", argv[i]));
-    else
-      files.emplace_back(argv[i]);
-  }
-  opt.demo = argc == 1 || find_switch(argc, argv, "--demo");
-  opt.icp =
-      opt.demo || find_switch(argc, argv, "-icp") || find_switch(argc, argv, "--icp");
-  opt.icp_point = find_switch(argc, argv, "--icp-point");
-  opt.json = find_switch(argc, argv, "--json");
+  static const std::set<std::string> switches = {
+      "-icp", "--icp", "--icp-point", "--json", "--demo", "--print-parameters",
+      "-h",   "--help"};
+  static const std::set<std::string> valued = {
+      "--icp-dist", "-o", "-m", "--size", "--screenshot", "--gt", "--seed"};
+  const std::string error =
+      pcl::phaser::collectArguments(argc, argv, switches, valued, opt.line);
+  if (!error.empty())
+    return (fail(kUsage, "%s (see -h).", error.c_str()));
+  const std::vector<std::string>& files = opt.line.files;
+  opt.demo = argc == 1 || opt.line.count("--demo");
+  opt.icp = opt.demo || opt.line.count("-icp") || opt.line.count("--icp");
+  opt.icp_point = opt.line.count("--icp-point");
+  opt.json = opt.line.count("--json");
   if (opt.demo && !files.empty())
     return (fail(kUsage, "--demo takes no SOURCE/TARGET files."));
   if (!opt.demo && files.size() < 2)
@@ -170,21 +127,19 @@ inline int parseFilesAndSwitches(int argc, char** argv, Options& opt)
 
 /** \brief The engine options into \a opt.params, range-checked, and --seed.
  * \return kOk or kUsage (after fail()) */
-inline int parseNumberOptions(int argc, char** argv, Options& opt)
+inline int parseNumberOptions(Options& opt)
 {
   if (opt.demo)
     opt.params.num_threads = default_demo_threads;
-  const std::string error = pcl::phaser::setEngineOptions(opt.engine, opt.params);
+  const std::string error = pcl::phaser::setEngineOptions(opt.line.engine, opt.params);
   if (!error.empty())
     return (fail(kUsage, "%s.", error.c_str()));
   std::string text;
-  long v = 0;
-  if (optionValue(argc, argv, *findSpec("--seed"), text) &&
-      (!toLong(text, v) || v < 0 || v > INT_MAX))
+  long v = opt.seed;
+  if (opt.line.value("--seed", text) && !pcl::phaser::parseInteger(text, 0, INT_MAX, v))
     return (fail(kUsage, "Invalid value '%s' for --seed: expected an integer in 0..%d.",
                  text.c_str(), INT_MAX));
-  if (!text.empty())
-    opt.seed = static_cast<int>(v);
+  opt.seed = static_cast<int>(v);
   return (kOk);
 }
 
@@ -206,10 +161,10 @@ inline std::string parameterTable()
 
 /** \brief Parse the other valued options: --icp-dist, --size.
  * \return kOk or kUsage (after fail()) */
-inline int parseValueOptions(int argc, char** argv, Options& opt)
+inline int parseValueOptions(Options& opt)
 {
   std::string text;
-  if (optionValue(argc, argv, *findSpec("--icp-dist"), text)) {
+  if (opt.line.value("--icp-dist", text)) {
     char* end = nullptr;
     opt.icp_distance = std::strtod(text.c_str(), &end);
     if (text.empty() || *end != '\0' || !(opt.icp_distance > 0.0) ||
@@ -218,11 +173,12 @@ inline int parseValueOptions(int argc, char** argv, Options& opt)
                    "Invalid --icp-dist '%s': expected a distance > 0 in meters.",
                    text.c_str()));
   }
-  if (optionValue(argc, argv, *findSpec("--size"), text)) {
+  if (opt.line.value("--size", text)) {
     const std::size_t x = text.find_first_of("xX");
     long w = 0, h = 0;
-    if (x == std::string::npos || !toLong(text.substr(0, x), w) ||
-        !toLong(text.substr(x + 1), h) || w < 16 || h < 16 || w > 8192 || h > 8192)
+    if (x == std::string::npos ||
+        !pcl::phaser::parseInteger(text.substr(0, x), 16, 8192, w) ||
+        !pcl::phaser::parseInteger(text.substr(x + 1), 16, 8192, h))
       return (fail(kUsage, "Invalid --size '%s': expected WxH, each in 16..8192.",
                    text.c_str()));
     opt.width = static_cast<int>(w);
@@ -234,21 +190,21 @@ inline int parseValueOptions(int argc, char** argv, Options& opt)
 /** \brief Parse the path options (--gt, -o, -m, --screenshot) and check their formats;
  * the demo's overlay defaults to default_demo_overlay.
  * \return kOk, kUsage, or kOutput when a screenshot cannot be saved (after fail()) */
-inline int parsePathOptions(int argc, char** argv, Options& opt)
+inline int parsePathOptions(Options& opt)
 {
-  if (optionValue(argc, argv, *findSpec("--gt"), opt.gt) && opt.demo)
+  if (opt.line.value("--gt", opt.gt) && opt.demo)
     return (fail(kUsage, "--gt does not apply to the demo (its truth is known)."));
-  if (optionValue(argc, argv, *findSpec("-o"), opt.output) &&
+  if (opt.line.value("-o", opt.output) &&
       pcl::phaser::getCloudFormat(opt.output) == pcl::phaser::CloudFormat::UNKNOWN)
     return (fail(kUsage, "Invalid -o '%s': expected a .pcd, .ply or .bin file.",
                  opt.output.c_str()));
-  if (optionValue(argc, argv, *findSpec("-m"), opt.overlay) &&
-      !hasExtension(opt.overlay, ".pcd") && !hasExtension(opt.overlay, ".ply"))
+  if (opt.line.value("-m", opt.overlay) && !hasExtension(opt.overlay, ".pcd") &&
+      !hasExtension(opt.overlay, ".ply"))
     return (fail(kUsage, "Invalid -m '%s': expected a .pcd or .ply file.",
                  opt.overlay.c_str()));
   if (opt.demo && opt.overlay.empty())
     opt.overlay = default_demo_overlay;
-  if (optionValue(argc, argv, *findSpec("--screenshot"), opt.screenshot)) {
+  if (opt.line.value("--screenshot", opt.screenshot)) {
     if (!hasExtension(opt.screenshot, ".png"))
       return (fail(kUsage, "Invalid --screenshot '%s': expected a .png file.",
                    opt.screenshot.c_str()));
@@ -267,11 +223,11 @@ inline int parseOptions(int argc, char** argv, Options& opt)
 {
   int code = parseFilesAndSwitches(argc, argv, opt);
   if (code == kOk)
-    code = parseNumberOptions(argc, argv, opt);
+    code = parseNumberOptions(opt);
   if (code == kOk)
-    code = parseValueOptions(argc, argv, opt);
+    code = parseValueOptions(opt);
   if (code == kOk)
-    code = parsePathOptions(argc, argv, opt);
+    code = parsePathOptions(opt);
   return (code);
 }
 

@@ -17,7 +17,6 @@
 #include <pcl/console/print.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -100,10 +99,7 @@ int usage(const std::string& reason)
   return batch::kUsage;
 }
 
-/** \brief The tool's options given, by name (switches map to ""), and the engine's. */
-struct Given : std::map<std::string, std::string> {
-  pcl::phaser::EngineArguments engine;
-};
+using Given = pcl::phaser::CommandLine;
 
 int collect(int argc, char** argv, Given& given)
 {
@@ -112,23 +108,11 @@ int collect(int argc, char** argv, Given& given)
   static const std::set<std::string> valued = {
       "--pairs", "--scans", "--poses", "--radius", "--min-gap",       "--out",
       "--g2o",   "--shard", "--cache", "--jobs",   "--odometry-sigma"};
-  std::string error;
-  for (int i = 1; i < argc; ++i) {
-    const std::string name = argv[i];
-    const bool has_value = valued.count(name) > 0;
-    if (pcl::phaser::takeEngineOption(argc, argv, i, given.engine, error)) {
-      if (!error.empty())
-        return usage(error);
-    } else if (!has_value && !switches.count(name))
-      return usage("Unknown argument '" + name + "'");
-    else if (has_value && i + 1 >= argc)
-      return usage("Option " + name + " needs a value");
-    else if (given.count(name))
-      return usage("Option " + name + " is given twice");
-    else
-      given[name] = has_value ? argv[++i] : "";
-  }
-  return batch::kOk;
+  std::string error =
+      pcl::phaser::collectArguments(argc, argv, switches, valued, given);
+  if (error.empty() && !given.files.empty())
+    error = "Unknown argument '" + given.files[0] + "'";
+  return error.empty() ? batch::kOk : usage(error);
 }
 
 /** \brief An integer option in [lo, hi] into \a value (left alone when absent). */
@@ -137,10 +121,8 @@ int integer(const Given& given, const std::string& name, long lo, long hi, int& 
   const auto it = given.find(name);
   if (it == given.end())
     return batch::kOk;
-  char* end = nullptr;
-  errno = 0;
-  const long v = std::strtol(it->second.c_str(), &end, 10);
-  if (it->second.empty() || *end != '\0' || errno != 0 || v < lo || v > hi)
+  long v = 0;
+  if (!pcl::phaser::parseInteger(it->second, lo, hi, v))
     return usage("Invalid value '" + it->second + "' for " + name +
                  ": expected an integer in [" + std::to_string(lo) + ", " +
                  std::to_string(hi) + "]");
