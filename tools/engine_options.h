@@ -6,7 +6,8 @@
  * \brief The engine settings of pcl_phaser_align and pcl_phaser_batch: one option per
  * row of pcl::phaser::kParameterRanges (`--<name with - for _>`, the documented ones
  * also under a short alias: -b, --grid, --threads, --max-tilt), plus --center and
- * --region X,Y,Z,R. Both tools parse, range-check and document them from this table.
+ * --region X,Y,Z,R. Both tools parse, range-check and document them from this table,
+ * and read their command lines with collectArguments().
  */
 #pragma once
 
@@ -95,15 +96,6 @@ inline bool parseInteger(const std::string& text, long lo, long hi, long& v)
   return !text.empty() && *end == '\0' && errno == 0 && v >= lo && v <= hi;
 }
 
-/** \brief The range of row \a r as text, e.g. "2..256" or "0..1e+05 m". */
-inline std::string rangeText(const ParameterRange& r)
-{
-  char text[64];
-  std::snprintf(text, sizeof(text), "%g..%g%s%s", r.min, r.max, *r.unit ? " " : "",
-                r.unit);
-  return text;
-}
-
 /** \brief Sets row \a r of \a p from \a text given as \a flag; empty, or the message
  *  naming the option, its range and meaning. */
 inline std::string setFromText(const ParameterRange& r, const std::string& flag,
@@ -176,28 +168,8 @@ inline std::string setEngineOption(const EngineOption& o, const std::string& fla
 }
 
 /** \brief The engine options of one command line by their index in engineOptions():
- *  the flag as given and its value. */
+ *  the flag as given and its value (collectArguments()). */
 using EngineArguments = std::map<int, std::pair<std::string, std::string>>;
-
-/** \brief When \a argv[i] is an engine option, records it with its value in \a args
- *  and moves \a i to the value. \return false when it is none; else true with
- *  \a error empty, or saying that the value is missing or the option repeated. */
-inline bool takeEngineOption(int argc, char** argv, int& i, EngineArguments& args,
-                             std::string& error)
-{
-  const int k = findEngineOption(argv[i]);
-  if (k < 0)
-    return false;
-  if (i + 1 >= argc)
-    error = std::string("Option ") + argv[i] + " needs a value";
-  else if (args.count(k))
-    error = std::string("Option ") + argv[i] + " is given twice";
-  else {
-    args[k] = {argv[i], argv[i + 1]};
-    ++i;
-  }
-  return true;
-}
 
 /** \brief A command line: the tool's options by name (a switch maps to ""), the
  *  engine's, and the other arguments (files). */
@@ -222,17 +194,18 @@ inline std::string collectArguments(int argc, char** argv,
   std::string error;
   for (int i = 1; i < argc && error.empty(); ++i) {
     const std::string name = argv[i];
-    const bool has_value = valued.count(name) > 0;
-    if (takeEngineOption(argc, argv, i, line.engine, error))
-      continue;
+    const int k = findEngineOption(name);
+    const bool has_value = k >= 0 || valued.count(name) > 0;
     if (!has_value && !switches.count(name)) {
       if (name.size() > 1 && name[0] == '-')
         error = "Unknown argument '" + name + "'";
       line.files.push_back(name);
     } else if (has_value && i + 1 >= argc)
       error = "Option " + name + " needs a value";
-    else if (line.count(name))
+    else if (k >= 0 ? line.engine.count(k) > 0 : line.count(name) > 0)
       error = "Option " + name + " is given twice";
+    else if (k >= 0)
+      line.engine[k] = {name, argv[++i]};
     else
       line[name] = has_value ? argv[++i] : "";
   }
@@ -265,8 +238,10 @@ inline std::string engineOptionsHelp(const PhaserParameters& d)
                 : o.flag + " " + o.value_name;
     std::string text;
     if (o.range) {
-      std::snprintf(line, sizeof(line), " (default: %g)", o.range->value(d));
-      text = std::string(o.range->meaning) + "; " + rangeText(*o.range) + line;
+      const ParameterRange& r = *o.range;
+      std::snprintf(line, sizeof(line), "; %g..%g%s%s (default: %g)", r.min, r.max,
+                    *r.unit ? " " : "", r.unit, r.value(d));
+      text = r.meaning + std::string(line);
     } else if (o.flag == "--center")
       text = std::string("projection center: sensor (each cloud's origin: scans), "
                          "centroid, or auto (sensor when they look like scans) "

@@ -64,21 +64,20 @@ struct Options {
   double icp_distance = default_icp_distance;
   pcl::phaser::PhaserParameters params; ///< the engine's (the demo: 2 threads)
   pcl::phaser::CommandLine line;        ///< the options and files given
+  std::string error;                    ///< the message of the problem found
   int width = default_width, height = default_height, seed = default_seed;
 };
 
-/** \brief The last fail() message, for the JSON object. */
-inline std::string last_error;
-
-/** \brief print_error() a printf-style message, remember it, return \a code. */
-inline int fail(int code, const char* format, ...)
+/** \brief print_error() a printf-style message, keep it in \a message (the JSON
+ *  object's "error"), return \a code. */
+inline int fail(std::string& message, int code, const char* format, ...)
 {
   char buffer[1024];
   va_list args;
   va_start(args, format);
   std::vsnprintf(buffer, sizeof(buffer), format, args);
   va_end(args);
-  last_error = buffer;
+  message = buffer;
   std::fflush(stdout); // keep the message after what was printed before it
   print_error("%s\n", buffer);
   return (code);
@@ -104,19 +103,21 @@ inline int parseFilesAndSwitches(int argc, char** argv, Options& opt)
   const std::string error =
       pcl::phaser::collectArguments(argc, argv, switches, valued, opt.line);
   if (!error.empty())
-    return (fail(kUsage, "%s (see -h).", error.c_str()));
+    return (fail(opt.error, kUsage, "%s (see -h).", error.c_str()));
   const std::vector<std::string>& files = opt.line.files;
   opt.demo = argc == 1 || opt.line.count("--demo");
   opt.icp = opt.demo || opt.line.count("-icp") || opt.line.count("--icp");
   opt.icp_point = opt.line.count("--icp-point");
   opt.json = opt.line.count("--json");
   if (opt.demo && !files.empty())
-    return (fail(kUsage, "--demo takes no SOURCE/TARGET files."));
+    return (fail(opt.error, kUsage, "--demo takes no SOURCE/TARGET files."));
   if (!opt.demo && files.size() < 2)
-    return (fail(kUsage, "Missing %s: the syntax is SOURCE TARGET [options] (see -h).",
+    return (fail(opt.error, kUsage,
+                 "Missing %s: the syntax is SOURCE TARGET [options] (see -h).",
                  files.empty() ? "SOURCE and TARGET" : "the TARGET argument"));
   if (!opt.demo && files.size() > 2)
-    return (fail(kUsage, "Too many file arguments ('%s'): expected SOURCE TARGET.",
+    return (fail(opt.error, kUsage,
+                 "Too many file arguments ('%s'): expected SOURCE TARGET.",
                  files[2].c_str()));
   if (!opt.demo) {
     opt.source = files[0];
@@ -133,11 +134,12 @@ inline int parseNumberOptions(Options& opt)
     opt.params.num_threads = default_demo_threads;
   const std::string error = pcl::phaser::setEngineOptions(opt.line.engine, opt.params);
   if (!error.empty())
-    return (fail(kUsage, "%s.", error.c_str()));
+    return (fail(opt.error, kUsage, "%s.", error.c_str()));
   std::string text;
   long v = opt.seed;
   if (opt.line.value("--seed", text) && !pcl::phaser::parseInteger(text, 0, INT_MAX, v))
-    return (fail(kUsage, "Invalid value '%s' for --seed: expected an integer in 0..%d.",
+    return (fail(opt.error, kUsage,
+                 "Invalid value '%s' for --seed: expected an integer in 0..%d.",
                  text.c_str(), INT_MAX));
   opt.seed = static_cast<int>(v);
   return (kOk);
@@ -169,7 +171,7 @@ inline int parseValueOptions(Options& opt)
     opt.icp_distance = std::strtod(text.c_str(), &end);
     if (text.empty() || *end != '\0' || !(opt.icp_distance > 0.0) ||
         !std::isfinite(opt.icp_distance))
-      return (fail(kUsage,
+      return (fail(opt.error, kUsage,
                    "Invalid --icp-dist '%s': expected a distance > 0 in meters.",
                    text.c_str()));
   }
@@ -179,7 +181,8 @@ inline int parseValueOptions(Options& opt)
     if (x == std::string::npos ||
         !pcl::phaser::parseInteger(text.substr(0, x), 16, 8192, w) ||
         !pcl::phaser::parseInteger(text.substr(x + 1), 16, 8192, h))
-      return (fail(kUsage, "Invalid --size '%s': expected WxH, each in 16..8192.",
+      return (fail(opt.error, kUsage,
+                   "Invalid --size '%s': expected WxH, each in 16..8192.",
                    text.c_str()));
     opt.width = static_cast<int>(w);
     opt.height = static_cast<int>(h);
@@ -193,24 +196,27 @@ inline int parseValueOptions(Options& opt)
 inline int parsePathOptions(Options& opt)
 {
   if (opt.line.value("--gt", opt.gt) && opt.demo)
-    return (fail(kUsage, "--gt does not apply to the demo (its truth is known)."));
+    return (fail(opt.error, kUsage,
+                 "--gt does not apply to the demo (its truth is known)."));
   if (opt.line.value("-o", opt.output) &&
       pcl::phaser::getCloudFormat(opt.output) == pcl::phaser::CloudFormat::UNKNOWN)
-    return (fail(kUsage, "Invalid -o '%s': expected a .pcd, .ply or .bin file.",
+    return (fail(opt.error, kUsage,
+                 "Invalid -o '%s': expected a .pcd, .ply or .bin file.",
                  opt.output.c_str()));
   if (opt.line.value("-m", opt.overlay) && !hasExtension(opt.overlay, ".pcd") &&
       !hasExtension(opt.overlay, ".ply"))
-    return (fail(kUsage, "Invalid -m '%s': expected a .pcd or .ply file.",
+    return (fail(opt.error, kUsage, "Invalid -m '%s': expected a .pcd or .ply file.",
                  opt.overlay.c_str()));
   if (opt.demo && opt.overlay.empty())
     opt.overlay = default_demo_overlay;
   if (opt.line.value("--screenshot", opt.screenshot)) {
     if (!hasExtension(opt.screenshot, ".png"))
-      return (fail(kUsage, "Invalid --screenshot '%s': expected a .png file.",
+      return (fail(opt.error, kUsage,
+                   "Invalid --screenshot '%s': expected a .png file.",
                    opt.screenshot.c_str()));
     std::string why; // fail now rather than after the registration
     if (!pcl::phaser::canSaveScreenshot(why))
-      return (fail(kOutput, "Cannot save --screenshot: %s", why.c_str()));
+      return (fail(opt.error, kOutput, "Cannot save --screenshot: %s", why.c_str()));
   }
   return (kOk);
 }

@@ -166,14 +166,12 @@ TEST(EngineOptions, EveryRowHasItsOptionAndTheAliasesStay)
 
 TEST(EngineOptions, RegionFieldsRefineTheRegionAndAreValidated)
 {
-  pcl::phaser::EngineArguments args;
+  pcl::phaser::CommandLine line;
   const char* argv[] = {"tool",    "--region-x",     "5", "--region",
                         "1,2,3,4", "--sensor-range", "30"};
-  std::string error;
-  for (int i = 1; i < 7; ++i)
-    ASSERT_TRUE(
-        pcl::phaser::takeEngineOption(7, const_cast<char**>(argv), i, args, error));
-  ASSERT_EQ(error, "");
+  ASSERT_EQ(pcl::phaser::collectArguments(7, const_cast<char**>(argv), {}, {}, line),
+            "");
+  pcl::phaser::EngineArguments& args = line.engine;
   pcl::phaser::PhaserParameters p;
   ASSERT_EQ(pcl::phaser::setEngineOptions(args, p), "");
   ASSERT_TRUE(p.region.has_value());
