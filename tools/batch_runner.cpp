@@ -5,6 +5,7 @@
 #include "batch_progress.h"
 #include "batch_records.h"
 #include "batch_runner.h"
+#include "engine_options.h"
 
 #include <pcl_phaser/core/warm_up.h>
 
@@ -18,6 +19,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <thread>
 #include <unistd.h>
 
@@ -56,12 +58,11 @@ int failWith(int code, const std::string& reason)
 std::string runFingerprint(const RunSettings& settings)
 {
   const PhaserParameters& p = settings.params;
-  const char* centers[] = {"sensor", "centroid", "auto"};
   char text[160];
   std::snprintf(text, sizeof(text),
                 "shard %d/%d, B %d, grid %d, voxel %.17g, passes %d, %s",
                 settings.shard, settings.shards, p.bandwidth, p.spatial_grid_size,
-                p.voxel_size, p.passes, centers[static_cast<int>(p.projection_center)]);
+                p.voxel_size, p.passes, centerName(p.projection_center));
   std::string fingerprint = text;
   // The priors, only when set (records written without them keep their fingerprint).
   if (p.region) {
@@ -73,6 +74,16 @@ std::string runFingerprint(const RunSettings& settings)
     std::snprintf(text, sizeof(text), ", tilt %.17g", p.max_tilt_deg);
     fingerprint += text;
   }
+  // Every other row of kParameterRanges (an engine option) not at its default.
+  static const std::set<std::string> listed = {
+      "bandwidth", "spatial_grid_size", "voxel_size", "passes",        "num_threads",
+      "region_x",  "region_y",          "region_z",   "region_radius", "max_tilt_deg"};
+  const PhaserParameters d;
+  for (const ParameterRange& r : kParameterRanges)
+    if (!listed.count(r.name) && r.value(p) != r.value(d)) {
+      std::snprintf(text, sizeof(text), ", %s %.17g", r.name, r.value(p));
+      fingerprint += text;
+    }
   return fingerprint;
 }
 

@@ -26,6 +26,7 @@
 #include <pcl_phaser/phaser_registration.h>
 
 #include <pcl/common/transforms.h>
+#include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 #include <pcl/console/time.h>
 
@@ -48,6 +49,7 @@ namespace {
 const double kPi = 3.14159265358979323846;
 
 struct Result {
+  std::string error; ///< the message of the failure, for --json
   Stage global, icp;
   pcl::phaser::PhaserResult estimate;
   std::size_t source_points = 0, target_points = 0;
@@ -61,7 +63,8 @@ struct Result {
 
 // ---- load, register, refine -------------------------------------------------------
 
-bool loadCloud(const std::string& path, pcl::PCLPointCloud2& cloud)
+bool loadCloud(const std::string& path, pcl::PCLPointCloud2& cloud,
+               std::string& message)
 {
   TicToc tt;
   tt.tic();
@@ -70,7 +73,7 @@ bool loadCloud(const std::string& path, pcl::PCLPointCloud2& cloud)
   std::string error;
   if (!pcl::phaser::loadCloud(path, cloud, &error)) {
     print_info("[failed]\n");
-    return (fail(kInput, "Cannot load the cloud: %s", error.c_str()), false);
+    return (fail(message, kInput, "Cannot load the cloud: %s", error.c_str()), false);
   }
   print_info("[done, ");
   print_value("%g", tt.toc());
@@ -83,34 +86,12 @@ bool loadCloud(const std::string& path, pcl::PCLPointCloud2& cloud)
   print_value("%s\n", names.c_str());
   for (const char* axis : {"x", "y", "z"})
     if (!align::isFloatField(cloud, pcl::getFieldIndex(cloud, axis)))
-      return (fail(kInput, "'%s' has no float32/float64 %s field.", path.c_str(), axis),
+      return (fail(message, kInput, "'%s' has no float32/float64 %s field.",
+                   path.c_str(), axis),
               false);
   if (cloud.width * cloud.height == 0)
-    return (fail(kInput, "'%s' holds no points.", path.c_str()), false);
+    return (fail(message, kInput, "'%s' holds no points.", path.c_str()), false);
   return (true);
-}
-
-/** \a params with the options the command line set. */
-pcl::phaser::PhaserParameters withOptions(pcl::phaser::PhaserParameters params,
-                                          const Options& opt)
-{
-  if (opt.bandwidth)
-    params.bandwidth = opt.bandwidth;
-  if (opt.grid)
-    params.spatial_grid_size = opt.grid;
-  if (opt.passes)
-    params.passes = opt.passes;
-  if (opt.threads >= 0 || opt.demo)
-    params.num_threads = opt.threads >= 0 ? opt.threads : default_demo_threads;
-  using Center = pcl::phaser::ProjectionCenter;
-  params.projection_center = opt.center == "centroid" ? Center::Centroid
-                             : opt.center == "auto"   ? Center::Automatic
-                                                      : Center::SensorOrigin;
-  if (opt.region[3] > 0.0)
-    params.region =
-        pcl::phaser::Region{opt.region[0], opt.region[1], opt.region[2], opt.region[3]};
-  params.max_tilt_deg = opt.max_tilt;
-  return params;
 }
 
 /** The global registration of \a source onto \a target into \a res.global and
@@ -121,7 +102,7 @@ void registerGlobally(pcl::PhaserRegistration<PointT, PointT>& phaser,
                       const typename pcl::PointCloud<PointT>::Ptr& target,
                       const Options& opt, Result& res)
 {
-  const pcl::phaser::PhaserParameters params = withOptions(phaser.getParameters(), opt);
+  const pcl::phaser::PhaserParameters& params = opt.params;
   phaser.setParameters(params);
   phaser.setInputSource(source);
   phaser.setInputTarget(target);
@@ -133,7 +114,7 @@ void registerGlobally(pcl::PhaserRegistration<PointT, PointT>& phaser,
              params.bandwidth, params.spatial_grid_size, params.passes,
              static_cast<unsigned>(
                  pcl::phaser::resolveThreadCount(int(phaser.getNumberOfThreads()))),
-             opt.center.c_str());
+             pcl::phaser::centerName(params.projection_center));
   if (params.max_tilt_deg > 0.0)
     print_info("with a max tilt %g deg ", params.max_tilt_deg);
   TicToc tt;
@@ -176,7 +157,7 @@ int compute(const pcl::PCLPointCloud2& source_blob,
   const typename Cloud::Ptr source = align::toFiniteCloud<PointT>(source_blob);
   const typename Cloud::Ptr target = align::toFiniteCloud<PointT>(target_blob);
   if (source->empty() || target->empty())
-    return (fail(kInput, "The %s cloud has no finite points.",
+    return (fail(res.error, kInput, "The %s cloud has no finite points.",
                  source->empty() ? "source" : "target"));
   res.source_points = source->size();
   res.target_points = target->size();
@@ -275,7 +256,7 @@ std::string toJson(const Result& res, const Options& opt, int code, double total
     o["demo_seed"] = opt.seed;
   o["total_ms"] = total_ms;
   if (code != kOk)
-    o["error"] = last_error;
+    o["error"] = opt.error.empty() ? res.error : opt.error;
   o["exit_code"] = code;
   return (o.dump(-1, ' ', false, JsonObject::error_handler_t::replace));
 }
@@ -283,7 +264,7 @@ std::string toJson(const Result& res, const Options& opt, int code, double total
 // ---- output -----------------------------------------------------------------------
 
 /** \brief Write -o, -m and --screenshot. */
-int saveOutputs(const Options& opt, pcl::PCLPointCloud2& source_blob, const Result& res)
+int saveOutputs(const Options& opt, pcl::PCLPointCloud2& source_blob, Result& res)
 {
   TicToc tt;
   std::string error;
@@ -300,8 +281,9 @@ int saveOutputs(const Options& opt, pcl::PCLPointCloud2& source_blob, const Resu
     print_value("%s ", opt.output.c_str());
     align::transformBlob(source_blob, res.final());
     if (!pcl::phaser::saveCloud(opt.output, source_blob, &error))
-      return (print_info("[failed]\n"), fail(kOutput, "Cannot write '%s': %s",
-                                             opt.output.c_str(), error.c_str()));
+      return (print_info("[failed]\n"),
+              fail(res.error, kOutput, "Cannot write '%s': %s", opt.output.c_str(),
+                   error.c_str()));
     done(static_cast<std::size_t>(source_blob.width) * source_blob.height);
   }
   if (!opt.overlay.empty()) {
@@ -309,8 +291,9 @@ int saveOutputs(const Options& opt, pcl::PCLPointCloud2& source_blob, const Resu
     print_highlight("Saving overlay, source red and target green, ");
     print_value("%s ", opt.overlay.c_str());
     if (!pcl::phaser::saveCloud(opt.overlay, *res.overlay, &error))
-      return (print_info("[failed]\n"), fail(kOutput, "Cannot write '%s': %s",
-                                             opt.overlay.c_str(), error.c_str()));
+      return (print_info("[failed]\n"),
+              fail(res.error, kOutput, "Cannot write '%s': %s", opt.overlay.c_str(),
+                   error.c_str()));
     done(res.overlay->size());
     print_info("View it with: ");
     print_value("pcl_viewer %s\n", opt.overlay.c_str());
@@ -321,7 +304,7 @@ int saveOutputs(const Options& opt, pcl::PCLPointCloud2& source_blob, const Resu
     print_value("%s ", opt.screenshot.c_str());
     if (!pcl::phaser::saveOverlayScreenshot(res.overlay, opt.screenshot, opt.width,
                                             opt.height, error))
-      return (print_info("[failed]\n"), fail(kOutput, "Cannot save '%s': %s",
+      return (print_info("[failed]\n"), fail(res.error, kOutput, "Cannot save '%s': %s",
                                              opt.screenshot.c_str(), error.c_str()));
     done(res.overlay->size());
   }
@@ -330,7 +313,8 @@ int saveOutputs(const Options& opt, pcl::PCLPointCloud2& source_blob, const Resu
 
 /** The demo pair of \a opt.seed into \a source, \a target and \a truth. */
 int simulateDemo(const Options& opt, pcl::PCLPointCloud2& source,
-                 pcl::PCLPointCloud2& target, Eigen::Matrix4d& truth)
+                 pcl::PCLPointCloud2& target, Eigen::Matrix4d& truth,
+                 std::string& message)
 {
   TicToc tt;
   tt.tic();
@@ -344,7 +328,7 @@ int simulateDemo(const Options& opt, pcl::PCLPointCloud2& source,
     truth = pair.T_target_source;
   } catch (const std::exception& e) {
     print_info("[failed]\n");
-    return (fail(kInput, "The demo simulation failed: %s", e.what()));
+    return (fail(message, kInput, "The demo simulation failed: %s", e.what()));
   }
   print_info("[done, ");
   print_value("%g", tt.toc());
@@ -356,14 +340,14 @@ int simulateDemo(const Options& opt, pcl::PCLPointCloud2& source,
 }
 
 /** kOk when the demo's errors are within its bounds, else kDemoMissed (printed). */
-int checkDemo(const Result& res)
+int checkDemo(Result& res)
 {
   const bool global_ok =
       res.global.rre_deg <= demo_rre_deg && res.global.rte_m <= demo_rte_m;
   const bool icp_ok =
       res.icp.rre_deg <= demo_icp_rre_deg && res.icp.rte_m <= demo_icp_rte_m;
   if (!global_ok || !icp_ok)
-    return (fail(kDemoMissed,
+    return (fail(res.error, kDemoMissed,
                  "Demo FAILED: %s is %.3g deg / %.3g m from the truth; the bound is %g "
                  "deg / %g m.",
                  global_ok ? "ICP" : "PHASER",
@@ -384,13 +368,14 @@ int run(const Options& opt, Result& res)
   bool has_truth = opt.demo;
   std::string error;
   if (opt.demo) {
-    if (const int rc = simulateDemo(opt, source, target, truth))
+    if (const int rc = simulateDemo(opt, source, target, truth, res.error))
       return (rc);
   } else {
     if (!opt.gt.empty() && !pcl::phaser::loadTransform(opt.gt, truth, &error))
-      return (fail(kInput, "Cannot use --gt: %s", error.c_str()));
+      return (fail(res.error, kInput, "Cannot use --gt: %s", error.c_str()));
     has_truth = !opt.gt.empty();
-    if (!loadCloud(opt.source, source) || !loadCloud(opt.target, target))
+    if (!loadCloud(opt.source, source, res.error) ||
+        !loadCloud(opt.target, target, res.error))
       return (kInput);
   }
   const bool intensity = pcl::getFieldIndex(source, "intensity") >= 0 &&
@@ -405,7 +390,7 @@ int run(const Options& opt, Result& res)
   }
   printReport(res);
   if (!res.global.converged || (res.icp.ran && !res.icp.converged))
-    return (fail(kNotConverged, "%s did not converge; nothing was written.",
+    return (fail(res.error, kNotConverged, "%s did not converge; nothing was written.",
                  res.global.converged ? "ICP" : "PHASER"));
   if (const int rc = saveOutputs(opt, source, res))
     return (rc);

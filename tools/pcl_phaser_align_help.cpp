@@ -16,40 +16,6 @@ using namespace pcl::phaser::align_tool;
 
 namespace {
 
-/** The registration options of the help, with the class defaults. */
-void printRegistrationHelp()
-{
-  const pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> d; // the class defaults
-  print_info(
-      "  Registers SOURCE onto TARGET (.pcd, .ply or KITTI .bin) with PHASER and "
-      "prints\n  T_target_source (p_target = T * p_source). Options:\n"
-      "    -b, --bandwidth B   = spherical bandwidth, %s (default: %d)\n"
-      "    --grid N            = translation grid voxels along the longest axis, "
-      "%s (default: %d)\n"
-      "    --passes K          = registration passes, %s (default: %d)\n"
-      "    --center MODE       = projection center: sensor (each cloud's origin, for "
-      "LiDAR scans), centroid, or auto (sensor for scans seen from their origin) "
-      "(default: auto)\n"
-      "    --region X,Y,Z,R    = position prior: the source's sensor is within R m of "
-      "(X, Y, Z) in the target's frame;\n"
-      "                          only target points a sensor there could see are used "
-      "and no pose outside is returned\n"
-      "    --max-tilt DEG      = gravity prior: both clouds z-up (after the guess) up "
-      "to "
-      "DEG; only rotations tilting\n"
-      "                          the source less are searched, a result beyond is not "
-      "converged; %s, 0: off (default: 0)\n"
-      "    --threads T         = worker threads, %s, 0: one per hardware thread "
-      "(default: 0, here %u; the demo: %d)\n"
-      "    --print-parameters  = print the range of every setting as a Markdown "
-      "table\n",
-      rangeOf("bandwidth").c_str(), d.getBandwidth(),
-      rangeOf("spatial_grid_size").c_str(), d.getParameters().spatial_grid_size,
-      rangeOf("passes").c_str(), d.getParameters().passes,
-      rangeOf("max_tilt_deg").c_str(), rangeOf("num_threads").c_str(),
-      static_cast<unsigned>(pcl::phaser::resolveThreadCount(0)), default_demo_threads);
-}
-
 /** The ICP and output options of the help. */
 void printOutputHelp()
 {
@@ -87,7 +53,15 @@ void printHelp(const char* program)
   print_error("Syntax is: %s SOURCE TARGET <options>\n"
               "       or: %s [--demo] <options>\n",
               program, program);
-  printRegistrationHelp();
+  const pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ> d; // the class defaults
+  print_info(
+      "  Registers SOURCE onto TARGET (.pcd, .ply or KITTI .bin) with PHASER and "
+      "prints\n  T_target_source (p_target = T * p_source). Engine settings "
+      "(doc/parameters.md; --threads 0: here %u, the demo's default: %d):\n%s"
+      "    --print-parameters  = print the range of every setting as a Markdown "
+      "table\n",
+      static_cast<unsigned>(pcl::phaser::resolveThreadCount(0)), default_demo_threads,
+      pcl::phaser::engineOptionsHelp(d.getParameters()).c_str());
   printOutputHelp();
   print_info(
       "    --demo              = the embedded demo, also run with no arguments: a "

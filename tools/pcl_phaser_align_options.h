@@ -3,27 +3,24 @@
 //
 /** \file pcl_phaser_align_options.h
  * \brief The command line of `pcl_phaser_align`: exit codes, defaults, the Options
- * and their parsing with pcl::console::parse_argument / find_switch. Every problem is
+ * and their parsing (the engine's options: engine_options.h). Every problem is
  * reported with print_error() and turned into an exit code, never an exception.
  */
 #pragma once
 
 #include "cloud_reading.h"
+#include "engine_options.h"
 #include "pcl_phaser_align_screenshot.h"
-#include "region_option.h"
 
-#include <pcl_phaser/core/parameters.h>
-
-#include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 
-#include <cerrno>
 #include <climits>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <set>
 #include <string>
 #include <strings.h>
 #include <vector>
@@ -63,79 +60,27 @@ const double demo_icp_rre_deg = 0.1, demo_icp_rte_m = 0.02;
 
 struct Options {
   std::string source, target, output, overlay, screenshot, gt;
-  std::string center = "auto"; // sensor, centroid or auto
   bool demo = false, icp = false, icp_point = false, json = false;
-  int bandwidth = 0, grid = 0, passes = 0; // 0: the class default
-  int threads = -1;                        // -1: the class default (the demo: 2)
   double icp_distance = default_icp_distance;
-  double region[4] = {0, 0, 0, 0}; // x y z radius; radius 0: no position prior
-  double max_tilt = 0.0;           // degrees, 0: no gravity prior
+  pcl::phaser::PhaserParameters params; ///< the engine's (the demo: 2 threads)
+  pcl::phaser::CommandLine line;        ///< the options and files given
+  std::string error;                    ///< the message of the problem found
   int width = default_width, height = default_height, seed = default_seed;
 };
 
-/** \brief The last fail() message, for the JSON object. */
-inline std::string last_error;
-
-/** \brief print_error() a printf-style message, remember it, return \a code. */
-inline int fail(int code, const char* format, ...)
+/** \brief print_error() a printf-style message, keep it in \a message (the JSON
+ *  object's "error"), return \a code. */
+inline int fail(std::string& message, int code, const char* format, ...)
 {
   char buffer[1024];
   va_list args;
   va_start(args, format);
   std::vsnprintf(buffer, sizeof(buffer), format, args);
   va_end(args);
-  last_error = buffer;
+  message = buffer;
   std::fflush(stdout); // keep the message after what was printed before it
   print_error("%s\n", buffer);
   return (code);
-}
-
-struct Spec {
-  const char *name, *alias;
-  bool has_value;
-};
-const Spec specs[] = {{"-b", "--bandwidth", true},
-                      {"--grid", nullptr, true},
-                      {"--passes", nullptr, true},
-                      {"--center", "--center", true},
-                      {"--max-tilt", nullptr, true},
-                      {"--threads", nullptr, true},
-                      {"--region", nullptr, true},
-                      {"-icp", "--icp", false},
-                      {"--icp-point", nullptr, false},
-                      {"--icp-dist", nullptr, true},
-                      {"-o", nullptr, true},
-                      {"-m", nullptr, true},
-                      {"--screenshot", nullptr, true},
-                      {"--size", nullptr, true},
-                      {"--gt", nullptr, true},
-                      {"--json", nullptr, false},
-                      {"--demo", nullptr, false},
-                      {"--seed", nullptr, true},
-                      {"--print-parameters", nullptr, false},
-                      {"-h", "--help", false}};
-
-inline const Spec* findSpec(const char* arg)
-{
-  for (const Spec& s : specs)
-    if (!std::strcmp(arg, s.name) || (s.alias && !std::strcmp(arg, s.alias)))
-      return (&s);
-  return (nullptr);
-}
-
-/** \brief The value of an option under its name or alias; false when absent. */
-inline bool optionValue(int argc, char** argv, const Spec& s, std::string& value)
-{
-  return (parse_argument(argc, argv, s.name, value) >= 0 ||
-          (s.alias && parse_argument(argc, argv, s.alias, value) >= 0));
-}
-
-inline bool toLong(const std::string& text, long& value)
-{
-  char* end = nullptr;
-  errno = 0;
-  value = std::strtol(text.c_str(), &end, 10);
-  return (!text.empty() && *end == '\0' && errno == 0);
 }
 
 inline bool hasExtension(const std::string& path, const char* ext)
@@ -150,28 +95,29 @@ inline bool hasExtension(const std::string& path, const char* ext)
  * \return kOk or kUsage (after fail()) */
 inline int parseFilesAndSwitches(int argc, char** argv, Options& opt)
 {
-  std::vector<std::string> files;
-  for (int i = 1; i < argc; ++i) {
-    if (const Spec* s = findSpec(argv[i])) {
-      if (s->has_value && ++i >= argc)
-        return (fail(kUsage, "Option %s needs a value (see -h).", argv[i - 1]));
-    } else if (argv[i][0] == '-' && argv[i][1] != '\0')
-      return (fail(kUsage, "Unknown option '%s' (see -h).", argv[i]));
-    else
-      files.emplace_back(argv[i]);
-  }
-  opt.demo = argc == 1 || find_switch(argc, argv, "--demo");
-  opt.icp =
-      opt.demo || find_switch(argc, argv, "-icp") || find_switch(argc, argv, "--icp");
-  opt.icp_point = find_switch(argc, argv, "--icp-point");
-  opt.json = find_switch(argc, argv, "--json");
+  static const std::set<std::string> switches = {
+      "-icp", "--icp", "--icp-point", "--json", "--demo", "--print-parameters",
+      "-h",   "--help"};
+  static const std::set<std::string> valued = {
+      "--icp-dist", "-o", "-m", "--size", "--screenshot", "--gt", "--seed"};
+  const std::string error =
+      pcl::phaser::collectArguments(argc, argv, switches, valued, opt.line);
+  if (!error.empty())
+    return (fail(opt.error, kUsage, "%s (see -h).", error.c_str()));
+  const std::vector<std::string>& files = opt.line.files;
+  opt.demo = argc == 1 || opt.line.count("--demo");
+  opt.icp = opt.demo || opt.line.count("-icp") || opt.line.count("--icp");
+  opt.icp_point = opt.line.count("--icp-point");
+  opt.json = opt.line.count("--json");
   if (opt.demo && !files.empty())
-    return (fail(kUsage, "--demo takes no SOURCE/TARGET files."));
+    return (fail(opt.error, kUsage, "--demo takes no SOURCE/TARGET files."));
   if (!opt.demo && files.size() < 2)
-    return (fail(kUsage, "Missing %s: the syntax is SOURCE TARGET [options] (see -h).",
+    return (fail(opt.error, kUsage,
+                 "Missing %s: the syntax is SOURCE TARGET [options] (see -h).",
                  files.empty() ? "SOURCE and TARGET" : "the TARGET argument"));
   if (!opt.demo && files.size() > 2)
-    return (fail(kUsage, "Too many file arguments ('%s'): expected SOURCE TARGET.",
+    return (fail(opt.error, kUsage,
+                 "Too many file arguments ('%s'): expected SOURCE TARGET.",
                  files[2].c_str()));
   if (!opt.demo) {
     opt.source = files[0];
@@ -180,41 +126,22 @@ inline int parseFilesAndSwitches(int argc, char** argv, Options& opt)
   return (kOk);
 }
 
-/** \brief The range of PhaserParameters field \a name as text, e.g. "2..256". */
-inline std::string rangeOf(const char* name)
-{
-  const pcl::phaser::ParameterRange* r = pcl::phaser::findParameterRange(name);
-  return (std::to_string(int(r->min)) + ".." + std::to_string(int(r->max)));
-}
-
-/** \brief Parse the integer options (-b, --grid, --passes, --threads, --seed), each
- * checked against its range (pcl::phaser::kParameterRanges for the settings).
+/** \brief The engine options into \a opt.params, range-checked, and --seed.
  * \return kOk or kUsage (after fail()) */
-inline int parseIntegerOptions(int argc, char** argv, Options& opt)
+inline int parseNumberOptions(Options& opt)
 {
-  const struct {
-    const Spec& spec;
-    const char* field; // of PhaserParameters, or null
-    int& value;
-  } ints[] = {{*findSpec("-b"), "bandwidth", opt.bandwidth},
-              {*findSpec("--grid"), "spatial_grid_size", opt.grid},
-              {*findSpec("--passes"), "passes", opt.passes},
-              {*findSpec("--threads"), "num_threads", opt.threads},
-              {*findSpec("--seed"), nullptr, opt.seed}};
+  if (opt.demo)
+    opt.params.num_threads = default_demo_threads;
+  const std::string error = pcl::phaser::setEngineOptions(opt.line.engine, opt.params);
+  if (!error.empty())
+    return (fail(opt.error, kUsage, "%s.", error.c_str()));
   std::string text;
-  for (const auto& o : ints) {
-    const auto* r = o.field ? pcl::phaser::findParameterRange(o.field) : nullptr;
-    const long lo = r ? long(r->min) : 0, hi = r ? long(r->max) : INT_MAX;
-    long v = 0;
-    if (!optionValue(argc, argv, o.spec, text))
-      continue;
-    if (!toLong(text, v) || v < lo || v > hi)
-      return (fail(kUsage,
-                   "Invalid value '%s' for %s: expected an integer in %ld..%ld%s%s%s.",
-                   text.c_str(), o.spec.name, lo, hi, r ? " (" : "",
-                   r ? r->meaning : "", r ? ")" : ""));
-    o.value = static_cast<int>(v);
-  }
+  long v = opt.seed;
+  if (opt.line.value("--seed", text) && !pcl::phaser::parseInteger(text, 0, INT_MAX, v))
+    return (fail(opt.error, kUsage,
+                 "Invalid value '%s' for --seed: expected an integer in 0..%d.",
+                 text.c_str(), INT_MAX));
+  opt.seed = static_cast<int>(v);
   return (kOk);
 }
 
@@ -234,67 +161,28 @@ inline std::string parameterTable()
   return (out);
 }
 
-/** \brief Parse --region X,Y,Z,R into \a opt.region (parseRegion).
- *  \return kOk or kUsage (after fail()) */
-inline int parseRegion(const std::string& text, Options& opt)
-{
-  const auto region = pcl::phaser::parseRegion(text);
-  if (!region)
-    return (fail(kUsage, "%s.", pcl::phaser::regionUsage(text).c_str()));
-  std::copy(region->begin(), region->end(), opt.region);
-  return (kOk);
-}
-
-/** \brief Parse --max-tilt DEG into \a opt, checked against the range of
- * PhaserParameters::max_tilt_deg.
+/** \brief Parse the other valued options: --icp-dist, --size.
  * \return kOk or kUsage (after fail()) */
-inline int parseMaxTilt(int argc, char** argv, Options& opt)
+inline int parseValueOptions(Options& opt)
 {
   std::string text;
-  if (!optionValue(argc, argv, *findSpec("--max-tilt"), text))
-    return (kOk);
-  const pcl::phaser::ParameterRange* r =
-      pcl::phaser::findParameterRange("max_tilt_deg");
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !(v >= r->min && v <= r->max))
-    return (fail(kUsage, "Invalid --max-tilt '%s': expected degrees in %g..%g (%s).",
-                 text.c_str(), r->min, r->max, r->meaning));
-  opt.max_tilt = v;
-  return (kOk);
-}
-
-/** \brief Parse the other valued registration options: --center, --max-tilt,
- *  --region, --icp-dist, --size. \return kOk or kUsage (after fail()) */
-inline int parseValueOptions(int argc, char** argv, Options& opt)
-{
-  std::string text;
-  if (optionValue(argc, argv, *findSpec("--region"), text) &&
-      parseRegion(text, opt) != kOk)
-    return (kUsage);
-  if (parseMaxTilt(argc, argv, opt) != kOk)
-    return (kUsage);
-  if (optionValue(argc, argv, *findSpec("--center"), text)) {
-    if (text != "sensor" && text != "centroid" && text != "auto")
-      return (fail(kUsage, "Invalid --center '%s': expected sensor, centroid or auto.",
-                   text.c_str()));
-    opt.center = text;
-  }
-  if (optionValue(argc, argv, *findSpec("--icp-dist"), text)) {
+  if (opt.line.value("--icp-dist", text)) {
     char* end = nullptr;
     opt.icp_distance = std::strtod(text.c_str(), &end);
     if (text.empty() || *end != '\0' || !(opt.icp_distance > 0.0) ||
         !std::isfinite(opt.icp_distance))
-      return (fail(kUsage,
+      return (fail(opt.error, kUsage,
                    "Invalid --icp-dist '%s': expected a distance > 0 in meters.",
                    text.c_str()));
   }
-  if (optionValue(argc, argv, *findSpec("--size"), text)) {
+  if (opt.line.value("--size", text)) {
     const std::size_t x = text.find_first_of("xX");
     long w = 0, h = 0;
-    if (x == std::string::npos || !toLong(text.substr(0, x), w) ||
-        !toLong(text.substr(x + 1), h) || w < 16 || h < 16 || w > 8192 || h > 8192)
-      return (fail(kUsage, "Invalid --size '%s': expected WxH, each in 16..8192.",
+    if (x == std::string::npos ||
+        !pcl::phaser::parseInteger(text.substr(0, x), 16, 8192, w) ||
+        !pcl::phaser::parseInteger(text.substr(x + 1), 16, 8192, h))
+      return (fail(opt.error, kUsage,
+                   "Invalid --size '%s': expected WxH, each in 16..8192.",
                    text.c_str()));
     opt.width = static_cast<int>(w);
     opt.height = static_cast<int>(h);
@@ -305,44 +193,47 @@ inline int parseValueOptions(int argc, char** argv, Options& opt)
 /** \brief Parse the path options (--gt, -o, -m, --screenshot) and check their formats;
  * the demo's overlay defaults to default_demo_overlay.
  * \return kOk, kUsage, or kOutput when a screenshot cannot be saved (after fail()) */
-inline int parsePathOptions(int argc, char** argv, Options& opt)
+inline int parsePathOptions(Options& opt)
 {
-  if (optionValue(argc, argv, *findSpec("--gt"), opt.gt) && opt.demo)
-    return (fail(kUsage, "--gt does not apply to the demo (its truth is known)."));
-  if (optionValue(argc, argv, *findSpec("-o"), opt.output) &&
+  if (opt.line.value("--gt", opt.gt) && opt.demo)
+    return (fail(opt.error, kUsage,
+                 "--gt does not apply to the demo (its truth is known)."));
+  if (opt.line.value("-o", opt.output) &&
       pcl::phaser::getCloudFormat(opt.output) == pcl::phaser::CloudFormat::UNKNOWN)
-    return (fail(kUsage, "Invalid -o '%s': expected a .pcd, .ply or .bin file.",
+    return (fail(opt.error, kUsage,
+                 "Invalid -o '%s': expected a .pcd, .ply or .bin file.",
                  opt.output.c_str()));
-  if (optionValue(argc, argv, *findSpec("-m"), opt.overlay) &&
-      !hasExtension(opt.overlay, ".pcd") && !hasExtension(opt.overlay, ".ply"))
-    return (fail(kUsage, "Invalid -m '%s': expected a .pcd or .ply file.",
+  if (opt.line.value("-m", opt.overlay) && !hasExtension(opt.overlay, ".pcd") &&
+      !hasExtension(opt.overlay, ".ply"))
+    return (fail(opt.error, kUsage, "Invalid -m '%s': expected a .pcd or .ply file.",
                  opt.overlay.c_str()));
   if (opt.demo && opt.overlay.empty())
     opt.overlay = default_demo_overlay;
-  if (optionValue(argc, argv, *findSpec("--screenshot"), opt.screenshot)) {
+  if (opt.line.value("--screenshot", opt.screenshot)) {
     if (!hasExtension(opt.screenshot, ".png"))
-      return (fail(kUsage, "Invalid --screenshot '%s': expected a .png file.",
+      return (fail(opt.error, kUsage,
+                   "Invalid --screenshot '%s': expected a .png file.",
                    opt.screenshot.c_str()));
     std::string why; // fail now rather than after the registration
     if (!pcl::phaser::canSaveScreenshot(why))
-      return (fail(kOutput, "Cannot save --screenshot: %s", why.c_str()));
+      return (fail(opt.error, kOutput, "Cannot save --screenshot: %s", why.c_str()));
   }
   return (kOk);
 }
 
 /** \brief Parse the whole command line into \a opt, checking in this order: the
- * files and switches, the integer options, the other values, the paths. The first
- * problem is reported with fail() and ends the parsing.
- * \return kOk, or the exit code of the first problem (kUsage or kOutput) */
+ * files and switches, the engine options and --seed, the other values, the paths. The
+ * first problem is reported with fail() and ends the parsing. \return kOk, or the exit
+ * code of the first problem (kUsage or kOutput) */
 inline int parseOptions(int argc, char** argv, Options& opt)
 {
   int code = parseFilesAndSwitches(argc, argv, opt);
   if (code == kOk)
-    code = parseIntegerOptions(argc, argv, opt);
+    code = parseNumberOptions(opt);
   if (code == kOk)
-    code = parseValueOptions(argc, argv, opt);
+    code = parseValueOptions(opt);
   if (code == kOk)
-    code = parsePathOptions(argc, argv, opt);
+    code = parsePathOptions(opt);
   return (code);
 }
 

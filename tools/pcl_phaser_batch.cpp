@@ -11,19 +11,18 @@
 #include "batch_records.h"
 #include "batch_runner.h"
 #include "cloud_reader_process.h"
+#include "engine_options.h"
 #include "loop_triangles.h"
-#include "region_option.h"
 
 #include <pcl/console/print.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <iostream>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -42,8 +41,6 @@ int defaultJobs()
 
 void printHelp(const char* name)
 {
-  const pcl::phaser::ParameterRange& threads =
-      *pcl::phaser::findParameterRange("num_threads");
   std::printf(
       "Syntax: %s --pairs LIST --out RESULTS.jsonl [options]\n"
       "        %s --scans LIST --poses POSES --radius R --min-gap K "
@@ -78,16 +75,10 @@ void printHelp(const char* name)
       "                        SLURM_ARRAY_TASK_COUNT when set, else 0/1)\n"
       "    --jobs J          = pairs aligned at once, 1..64, each job taking whole "
       "target groups (default: %d)\n"
-      "    --threads T       = engine threads per job, %d..%d (default: 0, the "
-      "hardware "
-      "threads split between the jobs)\n"
       "    --cache N         = prepared targets kept per job, 1..4096 (default: 4)\n"
-      "    -b B, --grid N, --passes K, --center sensor|centroid|auto, --max-tilt DEG, "
-      "--region X,Y,Z,R\n"
-      "                      = as in pcl_phaser_align (--region: every source's sensor "
-      "within R m of X,Y,Z\n"
-      "                        of its target's frame: relocalization queries against "
-      "one map)\n"
+      "  Engine settings, as in pcl_phaser_align (doc/parameters.md; --threads: per "
+      "job, 0 splits the\n  hardware threads between the jobs; --region: every "
+      "source against its target, e.g. one map):\n%s"
       "  merge OUT PARTS... joins shard outputs: .jsonl parts into OUT.jsonl (every "
       "pair exactly once),\n"
       "  .g2o parts into OUT.g2o. triangles: around every triangle of converged "
@@ -98,7 +89,8 @@ void printHelp(const char* name)
       "their reason),\n"
       "  1 usage, 2 unreadable input list, 3 output not writable, 130 stopped by "
       "SIGINT/SIGTERM (resume).\n",
-      name, name, name, name, defaultJobs(), int(threads.min), int(threads.max));
+      name, name, name, name, defaultJobs(),
+      pcl::phaser::engineOptionsHelp(pcl::phaser::PhaserParameters()).c_str());
 }
 
 int usage(const std::string& reason)
@@ -107,36 +99,20 @@ int usage(const std::string& reason)
   return batch::kUsage;
 }
 
-/** \brief The options given, by name; switches map to "". */
-using Given = std::map<std::string, std::string>;
+using Given = pcl::phaser::CommandLine;
 
 int collect(int argc, char** argv, Given& given)
 {
-  static const std::map<std::string, bool> takes_value = {
-      {"--pairs", true},     {"--scans", true},
-      {"--poses", true},     {"--radius", true},
-      {"--min-gap", true},   {"--print-pairs", false},
-      {"--out", true},       {"--g2o", true},
-      {"--shard", true},     {"--cache", true},
-      {"--jobs", true},      {"--threads", true},
-      {"-b", true},          {"--bandwidth", true},
-      {"--grid", true},      {"--passes", true},
-      {"--center", true},    {"--max-tilt", true},
-      {"--odometry", false}, {"--odometry-sigma", true},
-      {"--region", true},    {"-h", false},
-      {"--help", false}};
-  for (int i = 1; i < argc; ++i) {
-    const auto spec = takes_value.find(argv[i]);
-    if (spec == takes_value.end())
-      return usage(std::string("Unknown argument '") + argv[i] + "'");
-    if (spec->second && i + 1 >= argc)
-      return usage("Option " + spec->first + " needs a value");
-    const std::string name = spec->first == "--bandwidth" ? "-b" : spec->first;
-    if (given.count(name))
-      return usage("Option " + spec->first + " is given twice");
-    given[name] = spec->second ? argv[++i] : "";
-  }
-  return batch::kOk;
+  static const std::set<std::string> switches = {"--print-pairs", "--odometry", "-h",
+                                                 "--help"};
+  static const std::set<std::string> valued = {
+      "--pairs", "--scans", "--poses", "--radius", "--min-gap",       "--out",
+      "--g2o",   "--shard", "--cache", "--jobs",   "--odometry-sigma"};
+  std::string error =
+      pcl::phaser::collectArguments(argc, argv, switches, valued, given);
+  if (error.empty() && !given.files.empty())
+    error = "Unknown argument '" + given.files[0] + "'";
+  return error.empty() ? batch::kOk : usage(error);
 }
 
 /** \brief An integer option in [lo, hi] into \a value (left alone when absent). */
@@ -145,10 +121,8 @@ int integer(const Given& given, const std::string& name, long lo, long hi, int& 
   const auto it = given.find(name);
   if (it == given.end())
     return batch::kOk;
-  char* end = nullptr;
-  errno = 0;
-  const long v = std::strtol(it->second.c_str(), &end, 10);
-  if (it->second.empty() || *end != '\0' || errno != 0 || v < lo || v > hi)
+  long v = 0;
+  if (!pcl::phaser::parseInteger(it->second, lo, hi, v))
     return usage("Invalid value '" + it->second + "' for " + name +
                  ": expected an integer in [" + std::to_string(lo) + ", " +
                  std::to_string(hi) + "]");
@@ -156,68 +130,15 @@ int integer(const Given& given, const std::string& name, long lo, long hi, int& 
   return batch::kOk;
 }
 
-/** \brief An integer option for PhaserParameters field \a field, in its range. */
-int setting(const Given& given, const std::string& name, const char* field, int& value)
-{
-  const pcl::phaser::ParameterRange* r = pcl::phaser::findParameterRange(field);
-  return integer(given, name, long(r->min), long(r->max), value);
-}
-
-/** \brief --max-tilt DEG into PhaserParameters::max_tilt_deg, in its range. */
-int maxTilt(const Given& given, pcl::phaser::PhaserParameters& p)
-{
-  const auto it = given.find("--max-tilt");
-  if (it == given.end())
-    return batch::kOk;
-  const pcl::phaser::ParameterRange* r =
-      pcl::phaser::findParameterRange("max_tilt_deg");
-  char* end = nullptr;
-  const double v = std::strtod(it->second.c_str(), &end);
-  if (it->second.empty() || *end != '\0' || !(v >= r->min && v <= r->max))
-    return usage("Invalid --max-tilt '" + it->second +
-                 "': expected degrees in [0, 180]");
-  p.max_tilt_deg = v;
-  return batch::kOk;
-}
-
-/** \brief --region X,Y,Z,R: the position prior of every pair. */
-int region(const Given& given, pcl::phaser::PhaserParameters& p)
-{
-  const auto it = given.find("--region");
-  if (it == given.end())
-    return batch::kOk;
-  const auto r = pcl::phaser::parseRegion(it->second);
-  if (!r)
-    return usage(pcl::phaser::regionUsage(it->second));
-  pcl::phaser::setRegion(p, *r);
-  return batch::kOk;
-}
-
 int engineSettings(const Given& given, pcl::phaser::PhaserParameters& p, int& cache,
                    int& jobs)
 {
-  for (const int rc :
-       {setting(given, "-b", "bandwidth", p.bandwidth),
-        setting(given, "--grid", "spatial_grid_size", p.spatial_grid_size),
-        setting(given, "--passes", "passes", p.passes),
-        setting(given, "--threads", "num_threads", p.num_threads),
-        integer(given, "--cache", 1, 4096, cache),
-        integer(given, "--jobs", 1, 64, jobs)})
+  for (const int rc : {integer(given, "--cache", 1, 4096, cache),
+                       integer(given, "--jobs", 1, 64, jobs)})
     if (rc != batch::kOk)
       return rc;
-  const auto center = given.find("--center");
-  if (center != given.end()) {
-    using C = pcl::phaser::ProjectionCenter;
-    const std::map<std::string, C> centers = {
-        {"sensor", C::SensorOrigin}, {"centroid", C::Centroid}, {"auto", C::Automatic}};
-    if (!centers.count(center->second))
-      return usage("Invalid --center '" + center->second +
-                   "': expected sensor, centroid or auto");
-    p.projection_center = centers.at(center->second);
-  }
-  if (const int rc = region(given, p); rc != batch::kOk)
-    return rc;
-  return maxTilt(given, p);
+  const std::string error = pcl::phaser::setEngineOptions(given.engine, p);
+  return error.empty() ? batch::kOk : usage(error);
 }
 
 /** \brief --shard, else the Slurm array task, else 0/1. */

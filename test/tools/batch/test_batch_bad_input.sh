@@ -50,6 +50,13 @@ grep -q '"source":"scans/full18.pcd".*"status":"ok"' "$work/some.jsonl" || fail 
 # An output that belongs to another list is refused, not mixed.
 expect 2 "was written by another run" --pairs "$work/pairs.txt" --out "$work/some.jsonl"
 expect 2 "was written by another run" --pairs "$work/some.txt" --out "$work/some.jsonl" -b 32
+# Every engine option that changes results is in the run's fingerprint, not only -b.
+expect 2 "was written by another run" --pairs "$work/some.txt" --out "$work/some.jsonl" --min-inlier-fraction 0.3
+expect 2 "was written by another run" --pairs "$work/some.txt" --out "$work/some.jsonl" --voxel-size 0.5
+# The same engine options, under a name and an alias, and the same messages as pcl_phaser_align.
+expect 1 "Option --bandwidth is given twice" --pairs "$work/pairs.txt" --out "$o" -b 32 --bandwidth 16
+expect 1 "Invalid value '1' for -b: expected an integer in 2..256" --pairs "$work/pairs.txt" --out "$o" -b 1
+expect 1 "Invalid --whitening '2': expected a number in 0..1" --pairs "$work/pairs.txt" --out "$o" --whitening 2
 
 # Loop-closure candidates from a trajectory, printed as a list the tool reads back.
 ls "$scans"/full*.pcd | sort -V > "$work/all_scans.txt"
