@@ -94,3 +94,54 @@ TEST(ProjectionCenter, OriginOnData)
       pcl::phaser::originOnData(Eigen::Matrix3Xd::Constant(3, 4, nan), kOrigin));
   EXPECT_FALSE(pcl::phaser::originOnData(Eigen::Matrix3Xd(3, 0), kOrigin));
 }
+
+namespace {
+
+/** \a n points on a room-sized sphere of radius 5 m about \a center with bumps: one
+ *  surface per direction, as a scanner at \a center sees it. */
+Eigen::Matrix3Xd roomSeenFrom(const Eigen::Vector3d& center, int n, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0.0, 1.0);
+  Eigen::Matrix3Xd p(3, n);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d d = Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
+    p.col(i) = center + (5.0 + 0.3 * std::sin(4.0 * d.x()) * std::cos(3.0 * d.z())) * d;
+  }
+  return p;
+}
+
+} // namespace
+
+TEST(HiddenShare, AScanSeesNothingBehindItsSurface)
+{
+  const Eigen::Vector3d center(1.0, -2.0, 0.5);
+  EXPECT_LT(pcl::phaser::hiddenShare(roomSeenFrom(center, 40000, 1), center), 0.01);
+}
+
+TEST(HiddenShare, TwoShellsAboutAPointAreNotSeenFromIt)
+{
+  // Two caps (within 30 deg of +z) at 5 and 10 m: from the center the outer one lies
+  // behind the inner one (an object's frame origin inside it, not a sensor). About 1.1
+  // points of each per direction cell: a third of the outer ones share a cell.
+  const Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  const auto cap = [&](double range, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    Eigen::Matrix3Xd p(3, 20000);
+    for (Eigen::Index i = 0; i < p.cols(); ++i) {
+      const double z = 1.0 - u(rng) * (1.0 - std::cos(M_PI / 6.0)),
+                   a = 2 * M_PI * u(rng);
+      const double r = std::sqrt(1.0 - z * z);
+      p.col(i) = range * Eigen::Vector3d(r * std::cos(a), r * std::sin(a), z);
+    }
+    return p;
+  };
+  Eigen::Matrix3Xd caps(3, 40000);
+  caps << cap(5.0, 2), cap(10.0, 3);
+  EXPECT_LT(pcl::phaser::hiddenShare(caps.leftCols(20000), center), 0.01);
+  const double share = pcl::phaser::hiddenShare(caps, center);
+  EXPECT_GT(share, 2.0 * pcl::phaser::kMaxHiddenShare);
+  EXPECT_LT(share, 0.5);
+  EXPECT_EQ(pcl::phaser::hiddenShare(Eigen::Matrix3Xd(3, 0), center), 0.0);
+}

@@ -105,6 +105,30 @@ TEST(AutomaticCenter, SeparatesCloudsInTheirFramesFromMovedOnes)
         << offset;
 }
 
+TEST(AutomaticCenter, ScansAreSeenFromTheirOriginObjectViewsAreNot)
+{
+  // hiddenShare: what a sensor at the origin could not have seen. Scanners and cameras
+  // see nothing behind their surfaces; the bunny's frame origin is no scanner's.
+  const Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  for (const char* seen :
+       {"lidar/hdl32_fastgicp/251370668.pcd", "lidar/kitti_raw_hdl64/0000000000.bin",
+        "lidar/kitti_synthetic_gt/cloud049.ply", "lidar/balm_handheld/full0.pcd",
+        "lidar/balm_handheld/full120.pcd", "pcl/frame_20121214T142255.814212.pcd",
+        "pcl/milk.pcd", "pcl/milk_cartoon_all_small_clorox.pcd"}) {
+    PCL_PHASER_REQUIRE_DATA(seen);
+    const double share = pcl::phaser::hiddenShare(matrix(*loadFinite(seen)), origin);
+    std::printf("hidden share %-45s %.4f\n", seen, share);
+    EXPECT_LE(share, pcl::phaser::kMaxHiddenShare) << seen;
+  }
+  for (const char* view : {"bun000", "bun045", "bun180", "bun270", "bun315"}) {
+    const std::string path = std::string("object/stanford_bunny/") + view + ".ply";
+    PCL_PHASER_REQUIRE_DATA(path);
+    const double share = pcl::phaser::hiddenShare(matrix(*loadFinite(path)), origin);
+    std::printf("hidden share %-45s %.4f\n", path.c_str(), share);
+    EXPECT_GT(share, pcl::phaser::kMaxHiddenShare) << path;
+  }
+}
+
 TEST(AutomaticCenter, LidarScansUnderRandomPoses)
 {
   PCL_PHASER_REQUIRE_DATA("lidar/hdl32_fastgicp/251370668.pcd");

@@ -39,7 +39,10 @@ struct Verification {
   double free_space_violation = 0.0; ///< share where the target's sensor saw through
   double reverse_free_space_violation = 0.0; ///< target samples the source saw through
   /** \brief How well the matches pin the translation in every direction: the smallest
-   *  eigenvalue of the inliers' normalized sum w n n^T, [0, 1/3]; 0 without normals. */
+   *  eigenvalue of the inliers' sum w n n^T over the weight of all samples where the
+   *  free space is known (sensor viewpoints), else over the inliers' weight (a right
+   *  pose of a partial object view matches a third of its samples, and that share has
+   *  its own limit), [0, 1/3]; 0 without normals. */
   double constraint = 0.0;
   /** \brief Ranks poses: score less 6 x both free-space violations, [-12, 1]. */
   double rank = 0.0;
@@ -53,7 +56,9 @@ struct Hypothesis {
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();
   double rotation_score = 0.0;   ///< normalized correlation at its grid peak, [-1, 1]
   double overlap = 0.0;          ///< peak of its 3-D correlation (larger is better)
-  bool from_orientation = false; ///< a peak of the orientation histograms, not of range
+  /// a peak of a correlation that needs no common center (the orientation histograms,
+  /// or the occupancy magnitudes of objects), not of the range images
+  bool from_orientation = false;
   Verification verification;     ///< of this pose
 };
 
@@ -68,12 +73,14 @@ struct PhaserDiagnostics {
   /** \brief Highest rank of a hypothesis distinct from the final pose (over 10 deg or
    *  two coarse voxels away); -infinity: none. */
   double runner_up_rank = -std::numeric_limits<double>::infinity();
-  double runner_up_error = 0.0;     ///< std. error of the rank gap (0: none, centroids)
+  /** \brief Standard error of the rank gap, samples within kFitBlockVoxels coarse
+   *  voxels of each other counted as one block (their evidence is correlated); 0: none.
+   */
+  double runner_up_error = 0.0;
   double verification_radius = 0.0; ///< meters: half the coarse voxel
   int verification_samples = 0;     ///< source samples verified
-  /** \brief Enough samples and, about sensor origins, verification within
-   *  PhaserParameters' limits and the final rank 2.33 runner_up_error above the
-   *  runner-up's. */
+  /** \brief Enough samples, verification within PhaserParameters' limits and the
+   *  final rank 2.33 runner_up_error above the runner-up's. */
   bool verified = false;
   /** \brief Empty, or why a prior (PhaserParameters::region, max_tilt_deg) refused the
    *  pose the search found and what was returned instead (not converged). */

@@ -19,6 +19,7 @@ struct Target::Cache {
   std::mutex mutex;
   int sensor_centered = -1; ///< looksSensorCentered about the origin; < 0: not computed
   int origin_on_data = -1;  ///< originOnData about the origin; < 0: not computed
+  int seen_from_origin = -1; ///< hiddenShare about the origin small; < 0: not computed
   std::shared_ptr<const TargetModel> model;
   ProjectionCenter center = ProjectionCenter::SensorOrigin; ///< of model
   Eigen::Vector3d offset = Eigen::Vector3d::Zero(); ///< the projection center of model
@@ -95,7 +96,8 @@ bool sameModel(const StageParameters& prepared, const StageParameters& wanted)
          prepared.normalized_refinement == wanted.normalized_refinement &&
          prepared.orientation_candidates == wanted.orientation_candidates &&
          prepared.orientation_bandwidth == wanted.orientation_bandwidth &&
-         prepared.sensor_centered == wanted.sensor_centered;
+         prepared.sensor_centered == wanted.sensor_centered &&
+         prepared.viewpoints == wanted.viewpoints;
 }
 
 /** Whether the target's frame origin lies on its data (its cache locked). */
@@ -106,6 +108,20 @@ bool targetOriginOnData(const Target& target)
     cache.origin_on_data =
         originOnData(target.points(), Eigen::Vector3d::Zero()) ? 1 : 0;
   return cache.origin_on_data == 1;
+}
+
+/** Whether the target is seen from its frame origin (hiddenShare, cached); a map
+ *  (with a region, or far from its origin) counts as seen, as before. */
+bool targetSeenFromOrigin(const Target& target, bool map_target)
+{
+  auto& cache = TargetAccess::cache(target);
+  std::lock_guard<std::mutex> lock(cache.mutex);
+  if (map_target || !targetOriginOnData(target))
+    return true;
+  if (cache.seen_from_origin < 0)
+    cache.seen_from_origin =
+        hiddenShare(target.points(), Eigen::Vector3d::Zero()) <= kMaxHiddenShare;
+  return cache.seen_from_origin == 1;
 }
 
 /** The stage mode; \a moved: the source with the guess. A target whose origin is off
@@ -214,6 +230,13 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
       allowed.region ? ProjectionCenter::SensorOrigin
                      : chooseCenter(target, moved, guess, params.projection_center);
   StageParameters stage_params{params, center == ProjectionCenter::SensorOrigin};
+  // Each free-space test needs its cloud seen from its center (an object's frame origin
+  // is no scanner's; a scan moved by the guess is seen from the guess's translation).
+  stage_params.viewpoints = stage_params.sensor_centered &&
+                            targetSeenFromOrigin(target, allowed.region.has_value());
+  stage_params.source_viewpoint =
+      stage_params.viewpoints &&
+      hiddenShare(moved, guess.topRightCorner<3, 1>()) <= kMaxHiddenShare;
   stage_params.num_threads = resolveThreadCount(params.num_threads);
   // The tilt pull it corrects comes from a scanner's band, seen about its origin only.
   stage_params.normalized_refinement =

@@ -45,6 +45,30 @@ void record(Hypothesis& h, const Pose& pose)
   h.verification = pose.verification;
 }
 
+/** Peaks of the correlation of the occupancy magnitudes, which need no common center
+ *  (objects). */
+void magnitudeHypotheses(const SourceContext& source, std::vector<Hypothesis>& out)
+{
+  const TargetModel& target = source.target;
+  const int threads = source.params.num_threads;
+  SpatialGridParameters grid;
+  grid.voxel_size = target.coarse.grid.voxel_size;
+  const MagnitudeShells shells =
+      magnitudeShells(occupancySpectrum(makeSpatialGrid(source.coarse_points, grid),
+                                        source.coarse_points, threads),
+                      kMagnitudeBandwidth);
+  const So3CorrelationGrid C = correlateShells(target.magnitude, shells, threads);
+  const double norm = target.magnitude.norm * shells.norm;
+  for (const So3GridIndex& peak :
+       distinctPeaks(C, kMagnitudeCandidates, kHypothesisSeparation, threads)) {
+    Hypothesis h;
+    h.rotation = rotationFromEuler(gridEuler(peak, kMagnitudeBandwidth));
+    h.rotation_score = norm > 0.0 ? C(peak) / norm : 0.0;
+    h.from_orientation = true;
+    out.push_back(h);
+  }
+}
+
 /** The peaks of the range and orientation correlations; spare orientation ones apart.
  */
 std::vector<Hypothesis> rotationHypotheses(const SourceContext& source,
@@ -68,6 +92,11 @@ std::vector<Hypothesis> rotationHypotheses(const SourceContext& source,
     h.rotation = rotationFromEuler(gridEuler(peak, params.bandwidth));
     h.rotation_score = correlation(peak) / (target.spherical_norm * source_norm);
     out.push_back(h);
+  }
+  if (params.objects()) {
+    const auto begin = Clock::now();
+    magnitudeHypotheses(source, out);
+    times.orientation += msSince(begin);
   }
   if (target.orientation.size() == 0) // none about centroids or without candidates
     return out;
@@ -102,11 +131,12 @@ bool ranksAbove(const Verification& a, const Verification& b, double support)
   return a.rank > b.rank;
 }
 
-/** Whether verification tells poses apart: sensor origins, thin surfaces in both. */
+/** Whether verification tells poses apart: dense enough clouds (else about centroids
+ *  the peak rule decides), thin surfaces in both. */
 bool canVerify(const SourceContext& source)
 {
   const double limit = kMaxThickness * source.target.index.radius();
-  return source.params.sensor_centered && source.patches.thickness <= limit &&
+  return source.params.verification && source.patches.thickness <= limit &&
          source.target.thickness <= limit;
 }
 

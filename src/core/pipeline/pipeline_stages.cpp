@@ -194,8 +194,8 @@ Verification verifyBothWays(const SourceContext& source, const Eigen::Matrix3d& 
   const TargetModel& target = source.target;
   Verification verification =
       verifyPose(target.index, source.samples, R, t, threads,
-                 params.sensor_centered ? &target.free_space : nullptr);
-  if (params.sensor_centered)
+                 params.viewpoints ? &target.free_space : nullptr);
+  if (params.viewpoints)
     verification.reverse_free_space_violation =
         freeSpaceViolation(source.free_space, target.samples, target.sample_weights,
                            R.transpose(), -(R.transpose() * t), threads);

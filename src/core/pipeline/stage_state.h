@@ -7,6 +7,7 @@
 // Internal to the engine: the target model and the state of one estimate, shared by
 // the stages (estimate.h, global_search.h, pipeline_stages.h, pipeline_verdict.h).
 #include "channels/cloud_signals.h"
+#include "channels/spectral_magnitude.h"
 #include "channels/surface_orientation.h"
 #include "so3/so3_correlation.h"
 #include "so3/so3_refinement.h"
@@ -36,6 +37,18 @@ namespace pcl::phaser {
 /** The parameters the stages run with and whether the clouds are sensor-centered. */
 struct StageParameters : PhaserParameters {
   bool sensor_centered = true;
+  /** The target's center is where its sensor stood (not an object's frame origin):
+   *  the free-space test of source samples applies; else the clouds are objects, and
+   *  the magnitude hypotheses join the search. */
+  bool viewpoints = true;
+  /** So is the source's (with viewpoints): the reverse free-space test applies. */
+  bool source_viewpoint = true;
+  /** Poses are chosen and claimed by verification; about centroids of clouds with about
+   *  one point per verification cube (sparser than its radius) the peak rule decides.
+   */
+  bool verification = true;
+  /** Verified without free space: objects, about their frame origin or centroid. */
+  bool objects() const { return verification && !viewpoints; }
 };
 
 class TargetModel {
@@ -53,6 +66,7 @@ public:
   FreeSpace free_space; ///< what the target's sensor saw through (sensor-centered only)
   Eigen::Matrix3Xd samples; ///< for the reverse free-space test (sensor-centered only)
   Eigen::VectorXd sample_weights;
+  MagnitudeShells magnitude; ///< of the coarse occupancy (magnitudeShells)
   double preparation_ms = 0.0;
 };
 
@@ -65,6 +79,11 @@ inline double msSince(Clock::time_point start)
 {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
+
+/** Bandwidth of the magnitude shells (5.6 deg cells; the polish refines) and the
+ *  peaks they add: on the bunny views the truth lay within the first ten. */
+constexpr int kMagnitudeBandwidth = 32;
+constexpr int kMagnitudeCandidates = 10;
 
 /** Rotation peaks closer than this are one hypothesis (a few grid cells at B = 64). */
 constexpr double kHypothesisSeparation = 10.0 * M_PI / 180.0;

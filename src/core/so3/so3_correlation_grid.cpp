@@ -73,6 +73,15 @@ void So3CorrelationGrid::FftwFree::operator()(double* p) const
   fftw_free(p);
 }
 
+void So3CorrelationGrid::accumulate(const So3CorrelationGrid& other)
+{
+  if (other.output_bandwidth_ != output_bandwidth_ || other.beta_rows_ != beta_rows_)
+    throw InvalidArgument("So3CorrelationGrid::accumulate: grids differ");
+  const std::size_t n = static_cast<std::size_t>(beta_rows_) * size() * row_stride_;
+  for (std::size_t i = 0; i < n; ++i)
+    data_[i] += other.data_[i];
+}
+
 So3GridIndex So3CorrelationGrid::argmax(int num_threads) const
 {
   // The best of each beta row (first on ties), then the rows in order: the first

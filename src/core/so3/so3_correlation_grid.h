@@ -71,6 +71,10 @@ public:
   /** \brief Rows computed (size() unless limited in tilt). */
   int betaRows() const { return beta_rows_; }
 
+  /** \brief Adds \a other sample by sample (a sum of correlations).
+   *  \throws InvalidArgument unless both have the same size and rows. */
+  void accumulate(const So3CorrelationGrid& other);
+
 private:
   friend class So3Correlator;
   int output_bandwidth_ = 0;

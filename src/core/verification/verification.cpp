@@ -129,10 +129,9 @@ std::vector<double> sampleCloseness(const PointIndex& target,
   return closeness;
 }
 
-Verification verifyPose(const PointIndex& target,
-                            const VerificationSamples& samples,
-                            const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
-                            int num_threads, const FreeSpace* free_space)
+Verification verifyPose(const PointIndex& target, const VerificationSamples& samples,
+                        const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
+                        int num_threads, const FreeSpace* free_space)
 {
   const Eigen::Matrix3Xd& points = samples.points;
   const Eigen::VectorXd& weights = samples.weights;
@@ -158,14 +157,15 @@ Verification verifyPose(const PointIndex& target,
     return verification;
   verification.inlier_fraction = inliers / total;
   verification.score = sum / total;
-  if (with_normals) {
+  if (with_normals && inliers > 0.0) {
     Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
     for (Eigen::Index i = 0; i < n; ++i)
       if (closeness[static_cast<std::size_t>(i)] > 0.0)
         M += weights[i] * samples.normals.col(i) * samples.normals.col(i).transpose();
-    verification.constraint = std::max(
-        0.0,
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(M / total).eigenvalues()[0]);
+    verification.constraint =
+        std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(
+                          M / (free_space ? total : inliers))
+                          .eigenvalues()[0]);
   }
   if (free_space && free_space->bandwidth > 0)
     verification.free_space_violation =

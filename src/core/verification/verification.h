@@ -63,7 +63,8 @@ std::vector<double> sampleCloseness(const PointIndex& target,
 
 /** \brief Verifies the pose q_t = R q_s + t of \a samples against \a target. When both
  *  have normals only target points whose normal agrees with the sample's rotated one
- *  (kMinNormalCosine) count. An empty sample set or index gives zeros. Deterministic
+ *  (kMinNormalCosine) count; Verification::constraint is normalized by all samples with
+ *  a \a free_space, by the inliers without. An empty sample set or index gives zeros. Deterministic
  *  for any \a num_threads. \throws InvalidArgument unless there is one weight (and
  *  normal, if any) per sample. */
 Verification verifyPose(const PointIndex& target, const VerificationSamples& samples,
