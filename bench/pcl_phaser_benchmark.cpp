@@ -6,11 +6,13 @@
  * process. Studies: compare (real scans of ../shared/data under random large poses with
  * exact truth, the paper's noise / sparsity / overlap sweeps, and -pairs: real pairs
  * with reference poses), nees (getCovariance() per bandwidth), detection
- * (hasConverged() on correct and wrong registrations) and revisits (revisits.h). Writes
- * a markdown summary (stdout or -md), a CSV (-csv) and PNG plots (-plots DIR).
+ * (hasConverged() on correct and wrong registrations), revisits (revisits.h) and
+ * objects (objects.h). Writes a markdown summary (stdout or -md), a CSV (-csv) and PNG
+ * plots (-plots DIR).
  */
 #include "cloud_reading.h"
 #include "methods.h"
+#include "objects.h"
 #include "protocol.h"
 #include "report.h"
 #include "revisits.h"
@@ -112,8 +114,9 @@ void printHelp(const char* program)
 {
   console::print_info(
       "Usage: %s [options]\n"
-      "  -study S       compare | nees | detection | revisits (default compare;\n"
-      "                 revisits has its own options: -study revisits -h)\n"
+      "  -study S       compare | nees | detection | revisits | objects (default\n"
+      "                 compare; revisits and objects have their own options:\n"
+      "                 -study revisits -h, -study objects -h)\n"
       "  -data DIR      the shared data directory (default %s)\n"
       "  -scans A,B     scans under random poses: hdl32,kitti,kitti_synthetic\n"
       "  -poses N       random poses per scan and condition (default 10)\n"
@@ -471,6 +474,8 @@ int main(int argc, char** argv)
 {
   if (isRevisitsStudy(argc, argv))
     return runRevisitsStudy(argc, argv);
+  if (isObjectsStudy(argc, argv))
+    return runObjectsStudy(argc, argv);
   if (console::find_switch(argc, argv, "-h") ||
       console::find_switch(argc, argv, "--help")) {
     printHelp(argv[0]);

@@ -1,0 +1,383 @@
+/*
+ * SPDX-License-Identifier: BSD-3-Clause
+ * Copyright (c) 2026, the pcl_phaser developers.
+ *
+ * -study objects: every ordered pair of the bunny views present (bun.conf's views
+ * whose PLY is in the folder) whose source has at least 30 % of its points within 2 mm
+ * of the target after the truth, by each method; right: RRE < 5 deg and RTE < 5 mm.
+ * Times in ms and in units of one 128^3 FFT measured in the same run. The ordered
+ * pairs below that overlap are run too: a method's converged flag should not claim
+ * them.
+ */
+#include "fft_yardstick.h"
+#include "methods.h"
+#include "objects.h"
+#include "protocol.h"
+#include "report.h"
+
+#include <pcl/common/transforms.h>
+#include <pcl/console/parse.h>
+#include <pcl/console/print.h>
+#include <pcl/kdtree/kdtree_flann.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace pcl::phaser {
+namespace bench {
+
+namespace {
+
+namespace console = pcl::console;
+
+const char* const kFolder = "object/stanford_bunny";
+constexpr double kVoxel = 0.004;         ///< leaf (m) of PCL's methods: object scale
+constexpr double kOverlapRadius = 0.002; ///< m: a source point the target saw too
+constexpr double kMinOverlap = 0.3;      ///< of the source's points, for a pair
+constexpr double kRightDeg = 5.0, kRightM = 0.005;
+
+struct ObjectOptions {
+  std::string data = PCL_PHASER_DEFAULT_DATA_DIR;
+  /** phaser_xyz: the views carry x y z only, so pcl::PhaserRegistration<PointXYZ>
+   *  (phaser would fuse an intensity channel of zeros) */
+  std::vector<std::string> methods = {"phaser_xyz", "sacia", "prerejective"};
+  int threads = 2;
+  std::string csv;
+};
+
+/** \brief An ordered pair of views with its truth and overlap. */
+struct ObjectPair {
+  std::string source, target;
+  double overlap = 0.0; ///< share of the source within kOverlapRadius of the target
+  Eigen::Matrix4d truth = Eigen::Matrix4d::Identity(); ///< T_target_source
+};
+
+/** \brief One method on one pair. */
+struct ObjectTrial {
+  std::string method;
+  const ObjectPair* pair = nullptr;
+  double rre = 0.0, rte = 0.0, ms = 0.0;
+  bool converged = false;
+  bool right() const { return rre < kRightDeg && rte < kRightM; }
+  bool counted() const { return pair->overlap >= kMinOverlap; } ///< one of the pairs
+};
+
+/** \brief The method of allMethods() called \a name, or null. */
+const Method* findMethod(const std::string& name)
+{
+  for (const Method& m : allMethods())
+    if (m.name == name)
+      return &m;
+  return nullptr;
+}
+
+/** \brief The options of \a argv into \a o; false (with a message) if one is invalid.
+ */
+bool parseObjectOptions(int argc, char** argv, ObjectOptions& o)
+{
+  std::string methods;
+  console::parse_argument(argc, argv, "-data", o.data);
+  if (console::parse_argument(argc, argv, "-methods", methods) >= 0)
+    o.methods = splitList(methods);
+  console::parse_argument(argc, argv, "-threads", o.threads);
+  console::parse_argument(argc, argv, "-csv", o.csv);
+  bool ok = true;
+  auto fail = [&](const std::string& what) {
+    console::print_error("Invalid option: %s\n", what.c_str());
+    ok = false;
+  };
+  if (o.methods.empty())
+    fail("-methods: none given");
+  for (const std::string& m : o.methods)
+    if (!findMethod(m))
+      fail("-methods: unknown method " + m);
+  if (o.threads < 1 || o.threads > 256)
+    fail("-threads");
+  return ok;
+}
+
+/** \brief The views of bun.conf whose PLY is in \a folder, in bun.conf's order. */
+std::vector<ObjectView> presentViews(const std::string& folder)
+{
+  std::vector<ObjectView> views;
+  std::ifstream in(folder + "/bun.conf");
+  ObjectView view;
+  for (std::string line; std::getline(in, line);)
+    if (parseConfLine(line, view) && std::filesystem::exists(folder + "/" + view.file))
+      views.push_back(view);
+  return views;
+}
+
+/** \brief The share of \a source's points within kOverlapRadius of \a target once
+ * moved by \a truth. */
+double overlapOf(const Cloud& source, const pcl::KdTreeFLANN<PointT>& target,
+                 const Eigen::Matrix4d& truth)
+{
+  Cloud moved;
+  pcl::transformPointCloud(source, moved, truth);
+  pcl::Indices index(1);
+  std::vector<float> sq_distance(1);
+  std::size_t seen = 0;
+  for (const PointT& p : moved)
+    seen += target.nearestKSearch(p, 1, index, sq_distance) == 1 &&
+            sq_distance[0] <= kOverlapRadius * kOverlapRadius;
+  return moved.empty() ? 0.0 : static_cast<double>(seen) / moved.size();
+}
+
+/** \brief Every ordered pair of \a views with its overlap (also printed to stderr),
+ * sorted by source and target. */
+std::vector<ObjectPair> orderedPairs(const std::vector<ObjectView>& views,
+                                     const std::map<std::string, Cloud::Ptr>& clouds)
+{
+  std::vector<ObjectPair> pairs;
+  for (const ObjectView& target : views) {
+    pcl::KdTreeFLANN<PointT> tree;
+    tree.setInputCloud(clouds.at(target.file));
+    for (const ObjectView& source : views) {
+      if (&source == &target)
+        continue;
+      ObjectPair pair{source.file, target.file, 0.0, objectTruth(source, target)};
+      pair.overlap = overlapOf(*clouds.at(source.file), tree, pair.truth);
+      std::fprintf(stderr, "objects: %s -> %s overlap %.3f%s\n", pair.source.c_str(),
+                   pair.target.c_str(), pair.overlap,
+                   pair.overlap >= kMinOverlap ? "" : " (below 0.3: not a pair)");
+      pairs.push_back(pair);
+    }
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const ObjectPair& a, const ObjectPair& b) {
+    return std::tie(a.source, a.target) < std::tie(b.source, b.target);
+  });
+  return pairs;
+}
+
+/** \brief The settings of every method: the object-scale voxel and the threads. */
+MethodSettings objectSettings(const ObjectOptions& o)
+{
+  MethodSettings settings; // pcl_phaser at its defaults but the threads
+  settings.threads = o.threads;
+  settings.voxel = kVoxel;
+  return settings;
+}
+
+/** \brief Every pair by every method, after one untimed align of the first pair by
+ * each method (the first align of a process plans its transforms); a CSV row each. */
+std::vector<ObjectTrial> runTrials(const ObjectOptions& o,
+                                   const std::vector<ObjectPair>& pairs,
+                                   const std::map<std::string, Cloud::Ptr>& clouds,
+                                   std::ostream* csv)
+{
+  const MethodSettings settings = objectSettings(o);
+  std::vector<ObjectTrial> trials;
+  if (pairs.empty())
+    return trials;
+  for (const std::string& name : o.methods)
+    findMethod(name)->run(clouds.at(pairs[0].source), clouds.at(pairs[0].target),
+                          settings);
+  for (const ObjectPair& pair : pairs)
+    for (const std::string& name : o.methods) {
+      const MethodResult r = findMethod(name)->run(clouds.at(pair.source),
+                                                   clouds.at(pair.target), settings);
+      ObjectTrial t{name,
+                    &pair,
+                    rreDeg(r.transformation, pair.truth),
+                    rteM(r.transformation, pair.truth),
+                    r.ms,
+                    r.converged};
+      std::fprintf(stderr,
+                   "%s -> %s (overlap %.2f) %-12s RRE %6.2f deg RTE %7.2f mm "
+                   "converged %d %6.0f ms\n",
+                   pair.source.c_str(), pair.target.c_str(), pair.overlap, name.c_str(),
+                   t.rre, 1e3 * t.rte, t.converged ? 1 : 0, t.ms);
+      if (csv)
+        *csv << name << "," << pair.source << "," << pair.target << ","
+             << formatValue("%.4f", pair.overlap) << "," << formatValue("%.4f", t.rre)
+             << "," << formatValue("%.6f", t.rte) << "," << t.converged << ","
+             << t.right() << "," << formatValue("%.1f", t.ms) << std::endl;
+      trials.push_back(t);
+    }
+  return trials;
+}
+
+/** \brief A method's trials summed up: on the pairs, and on the ordered pairs below
+ * kMinOverlap. */
+struct MethodSummary {
+  int pairs = 0, right = 0, converged = 0, wrong = 0;
+  int others = 0, others_converged = 0;     ///< below kMinOverlap
+  double rre = 0.0, rte_mm = 0.0, ms = 0.0; ///< medians (errors: of the right ones)
+};
+
+MethodSummary summarize(const std::vector<ObjectTrial>& trials,
+                        const std::string& method)
+{
+  MethodSummary s;
+  std::vector<double> rre, rte, ms;
+  for (const ObjectTrial& t : trials) {
+    if (t.method != method)
+      continue;
+    if (!t.counted()) {
+      ++s.others;
+      s.others_converged += t.converged;
+      continue;
+    }
+    ++s.pairs;
+    s.converged += t.converged;
+    s.wrong += t.converged && !t.right();
+    ms.push_back(t.ms);
+    if (t.right()) {
+      ++s.right;
+      rre.push_back(t.rre);
+      rte.push_back(1e3 * t.rte);
+    }
+  }
+  s.rre = median(rre);
+  s.rte_mm = median(rte);
+  s.ms = median(ms);
+  return s;
+}
+
+/** \brief One row per method: counts, medians of the right trials' errors, times. */
+void writeMethodTable(std::ostream& md, const std::vector<ObjectTrial>& trials,
+                      const std::vector<std::string>& methods, double fft_ms)
+{
+  md << "| method | pairs | right (5 deg / 5 mm) | converged | valid but wrong "
+        "(converged, not right) | median RRE of the right (deg) | median RTE of the "
+        "right (mm) | median time (ms) | median time (FFT128) | converged below 30 % "
+        "overlap |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const std::string& method : methods) {
+    const MethodSummary s = summarize(trials, method);
+    md << "| " << method << " | " << s.pairs << " | " << s.right << " | " << s.converged
+       << " | " << s.wrong << " | " << formatValue("%.2f", s.rre) << " | "
+       << formatValue("%.2f", s.rte_mm) << " | " << formatValue("%.0f", s.ms) << " | "
+       << formatValue("%.1f", s.ms / fft_ms) << " | " << s.others_converged << " / "
+       << s.others << " |\n";
+  }
+}
+
+/** \brief One row per pair: its overlap and each method's errors ("c": converged). */
+void writePairTable(std::ostream& md, const std::vector<ObjectTrial>& trials,
+                    const std::vector<ObjectPair>& pairs,
+                    const std::vector<std::string>& methods)
+{
+  md << "| source | target | overlap |";
+  for (const std::string& method : methods)
+    md << " " << method << " RRE (deg) / RTE (mm) |";
+  md << "\n|---|---|---|";
+  for (std::size_t i = 0; i < methods.size(); ++i)
+    md << "---|";
+  md << "\n";
+  for (const ObjectPair& pair : pairs) {
+    md << "| " << pair.source << " | " << pair.target << " | "
+       << formatValue("%.2f", pair.overlap) << " |";
+    for (const std::string& method : methods)
+      for (const ObjectTrial& t : trials)
+        if (t.method == method && t.pair == &pair)
+          md << " " << formatValue("%.2f", t.rre) << " / "
+             << formatValue("%.2f", 1e3 * t.rte) << (t.converged ? " c" : "")
+             << (t.right() || !t.counted() ? "" : " (wrong)") << " |";
+    md << "\n";
+  }
+}
+
+/** \brief The command, the setup, the yardstick and the two tables. */
+void writeReport(std::ostream& md, int argc, char** argv, const ObjectOptions& o,
+                 const std::vector<ObjectPair>& pairs,
+                 const std::vector<ObjectTrial>& trials, double fft_ms)
+{
+  std::ostringstream command;
+  for (int i = 0; i < argc; ++i)
+    command << (i ? " " : "") << argv[i];
+  const auto counted = std::count_if(pairs.begin(), pairs.end(), [](const auto& p) {
+    return p.overlap >= kMinOverlap;
+  });
+  md << "Command: `" << command.str() << "`\n\n"
+     << "Objects: " << counted
+     << " pairs, the ordered pairs of the Stanford bunny views "
+     << "of " << kFolder
+     << " whose source has >= 30 % of its points within 2 mm of the "
+     << "target after the truth (bun.conf); the other " << pairs.size() - counted
+     << " are run for the converged flag only. Right: RRE < 5 deg and RTE < 5 mm. "
+     << o.threads << " threads; PCL's methods at a voxel of " << kVoxel
+     << " m (normals 2 v, FPFH 5 v); pcl_phaser default-constructed but the threads. "
+        "Each method aligned the first pair once, untimed, before the trials.\n\n"
+     << "Yardstick: one 128^3 real-to-complex FFT (FFTW_MEASURE, 1 thread) = "
+     << formatValue("%.2f", fft_ms) << " ms (FFT128).\n\n";
+  writeMethodTable(md, trials, o.methods, fft_ms);
+  md << "\nPer ordered pair (c: converged; wrong: not right; below 0.30: not one of "
+        "the pairs):\n\n";
+  writePairTable(md, trials, pairs, o.methods);
+}
+
+} // namespace
+
+bool isObjectsStudy(int argc, char** argv)
+{
+  std::string study;
+  return console::parse_argument(argc, argv, "-study", study) >= 0 &&
+         study == "objects";
+}
+
+void printObjectsHelp(const char* program)
+{
+  console::print_info(
+      "Usage: %s -study objects [options]\n"
+      "  the Stanford bunny views of <data>/%s (truth from bun.conf): every\n"
+      "  ordered pair whose source has >= 30 %% of its points within 2 mm of the\n"
+      "  target after the truth; right: RRE < 5 deg and RTE < 5 mm\n"
+      "  -data DIR        the shared data directory (default %s)\n"
+      "  -methods A,B     as the compare study's (-h); default\n"
+      "                   phaser_xyz,sacia,prerejective: pcl::PhaserRegistration\n"
+      "                   <PointXYZ> default-constructed but the threads (the views\n"
+      "                   have no intensity), PCL's SAC-IA and prerejective on FPFH\n"
+      "                   at the object-scale voxel of %g m (normals 2 v, FPFH 5 v)\n"
+      "  -threads N       threads for every method (default 2)\n"
+      "  -csv FILE        every trial as CSV\n",
+      program, kFolder, PCL_PHASER_DEFAULT_DATA_DIR, kVoxel);
+}
+
+int runObjectsStudy(int argc, char** argv)
+{
+  ObjectOptions o;
+  const bool help = console::find_switch(argc, argv, "-h") ||
+                    console::find_switch(argc, argv, "--help");
+  if (help || !parseObjectOptions(argc, argv, o)) {
+    printObjectsHelp(argv[0]);
+    return help ? 0 : 2;
+  }
+  console::setVerbosityLevel(console::L_ERROR);
+  const std::string folder =
+      std::filesystem::path(o.data + "/" + kFolder).lexically_normal().string();
+  if (!std::filesystem::exists(folder + "/bun.conf")) {
+    std::fprintf(stderr, "objects: %s/bun.conf not found, skipping\n", folder.c_str());
+    return 0;
+  }
+  const std::vector<ObjectView> views = presentViews(folder);
+  std::map<std::string, Cloud::Ptr> clouds;
+  for (const ObjectView& view : views)
+    if (!(clouds[view.file] = loadFiniteScan(folder + "/" + view.file)))
+      return 1; // the loader said why
+  const std::vector<ObjectPair> pairs = orderedPairs(views, clouds);
+  const double fft_ms = fftYardstickMs();
+  std::fprintf(stderr,
+               "objects: %zu views, %zu ordered pairs x %zu methods; FFT128 %.2f ms\n",
+               views.size(), pairs.size(), o.methods.size(), fft_ms);
+  std::ofstream csv;
+  if (!o.csv.empty()) {
+    csv.open(o.csv);
+    csv << "method,source,target,overlap,rre_deg,rte_m,converged,right,ms\n";
+  }
+  const std::vector<ObjectTrial> trials =
+      runTrials(o, pairs, clouds, o.csv.empty() ? nullptr : &csv);
+  writeReport(std::cout, argc, argv, o, pairs, trials, fft_ms);
+  return 0;
+}
+
+} // namespace bench
+} // namespace pcl::phaser
