@@ -43,6 +43,14 @@ const std::vector<Method>& allMethods()
   return methods;
 }
 
+const Method* findMethod(const std::string& name)
+{
+  for (const Method& m : allMethods())
+    if (m.name == name)
+      return &m;
+  return nullptr;
+}
+
 pcl::PointCloud<pcl::PointXYZ>::Ptr downsampleXYZ(const Cloud& cloud, double voxel)
 {
   auto xyz = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();

@@ -99,6 +99,9 @@ struct Method {
  * kfpcs, icp, gicp, ndt. */
 const std::vector<Method>& allMethods();
 
+/** \brief The method of allMethods() called \a name, or null. */
+const Method* findMethod(const std::string& name);
+
 /** \brief pcl::IterativeClosestPoint from \a initial on clouds downsampled at
  * settings.voxel; max correspondence distance 2 voxels, 50 iterations. The time of the
  * refinement is added to result.ms; converged stays as the initial method said. */

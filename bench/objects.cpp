@@ -70,15 +70,6 @@ struct ObjectTrial {
   bool counted() const { return pair->overlap >= kMinOverlap; } ///< one of the pairs
 };
 
-/** \brief The method of allMethods() called \a name, or null. */
-const Method* findMethod(const std::string& name)
-{
-  for (const Method& m : allMethods())
-    if (m.name == name)
-      return &m;
-  return nullptr;
-}
-
 /** \brief The options of \a argv into \a o; false (with a message) if one is invalid.
  */
 bool parseObjectOptions(int argc, char** argv, ObjectOptions& o)

@@ -62,14 +62,6 @@ struct RevisitOptions {
 
 constexpr std::size_t kDisjointBins = 4; ///< the first bins() partition the distances
 
-const Method* findMethod(const std::string& name)
-{
-  for (const Method& m : allMethods())
-    if (m.name == name)
-      return &m;
-  return nullptr;
-}
-
 bool parseRevisitOptions(int argc, char** argv, RevisitOptions& o)
 {
   std::string methods;
