@@ -24,6 +24,9 @@ constexpr double kIndexThinning = 8.0;
 /** Most verification samples of either cloud: an inlier share from this many has a
  *  standard error below 0.004 (a LiDAR scan gives about 3,000). */
 constexpr Eigen::Index kMaxVerificationSamples = 16384;
+/** Most samples a polish steps on (every k-th; the poses it reaches are verified on
+ *  all): a Gauss-Newton step of six unknowns needs far fewer. */
+constexpr Eigen::Index kMaxPolishSamples = 4096;
 /** Points per verification sample from which clouds about centroids are verified: at
  *  one point per sample cube there are no neighbors within the radius. PCL's bun0 (397
  *  points) measures 1.0 and the office keypoints 1.07; the milk carton 1.9-3.8, the
@@ -69,6 +72,28 @@ Eigen::Matrix3Xd verificationSamples(const Eigen::Matrix3Xd& points, double radi
   return kept;
 }
 
+/** Every k-th of \a all, at most kMaxPolishSamples of them (all when fewer). */
+VerificationSamples polishSamples(const VerificationSamples& all)
+{
+  const Eigen::Index n = all.points.cols();
+  if (n <= kMaxPolishSamples)
+    return all;
+  const Eigen::Index step = (n + kMaxPolishSamples - 1) / kMaxPolishSamples;
+  const Eigen::Index m = (n + step - 1) / step;
+  VerificationSamples kept;
+  kept.points.resize(3, m);
+  kept.weights.resize(m);
+  if (all.normals.cols() != 0)
+    kept.normals.resize(3, m);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    kept.points.col(i) = all.points.col(i * step);
+    kept.weights[i] = all.weights[i * step];
+    if (all.normals.cols() != 0)
+      kept.normals.col(i) = all.normals.col(i * step);
+  }
+  return kept;
+}
+
 /** \a points thinned (kIndexThinning) and indexed at \a radius with patch normals. */
 PointIndex thinnedIndex(const Eigen::Matrix3Xd& points, const SurfacePatches& patches,
                         double radius)
@@ -111,7 +136,7 @@ SourceContext sourceContext(const TargetModel& target, const Eigen::Matrix3Xd& p
                             const StageParameters& params, StageTimes& times)
 {
   const auto start = Clock::now();
-  SourceContext source{target, points, channels, params, {}, {}, {}, {}};
+  SourceContext source{target, points, channels, params, {}, {}, {}, {}, {}};
   const double coarse_voxel = target.coarse.grid.voxel_size;
   // Four independent passes over the points as one-thread tasks, the longest first.
   runTasks(4, params.num_threads, [&](int part) {
@@ -128,6 +153,7 @@ SourceContext sourceContext(const TargetModel& target, const Eigen::Matrix3Xd& p
   });
   source.samples.weights = orientationWeights(source.patches, source.samples.points);
   source.samples.normals = patchNormalsAt(source.patches, source.samples.points);
+  source.polish = polishSamples(source.samples);
   times.verification += msSince(start);
   return source;
 }
@@ -199,8 +225,10 @@ RigidPose estimateCentered(const TargetModel& target, const Eigen::Matrix3Xd& po
   result.chosen_hypothesis = search.chosen;
   diagnostics.hypotheses = std::move(search.hypotheses);
   diagnostics.passes = 1;
-  Pose pose = reprojectionPasses(source, search.pose, diagnostics.passes, times);
-  pose = refineFinalPose(source, pose, result);
+  Pose pose = search.decided
+                  ? search.pose
+                  : reprojectionPasses(source, search.pose, diagnostics.passes, times);
+  pose = refineFinalPose(source, pose, search.decided, result);
   judgeFinalPose(source, pose, result);
   return pose;
 }

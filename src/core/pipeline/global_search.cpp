@@ -265,6 +265,7 @@ GlobalSearch globalSearch(const SourceContext& source,
                      (!meetsLimits(search.pose.verification, source.params) ||
                       !standsOut(source, search.pose, search.hypotheses).stands_out);
   times.verification += msSince(start);
+  search.decided = search.pose.verifiable && !widen;
   if (widen) {
     const std::size_t first = search.hypotheses.size();
     search.hypotheses.insert(search.hypotheses.end(), spare.begin(), spare.end());

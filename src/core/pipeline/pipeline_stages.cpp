@@ -236,13 +236,14 @@ double maxShift(const SourceContext& source)
 }
 
 Pose refineOnSamples(const SourceContext& source, const Pose& pose, StageTimes& times,
-                     int num_threads)
+                     int num_threads, bool all_samples)
 {
   const auto start = Clock::now();
   const TargetModel& target = source.target;
-  const RigidPose refined = refinePoseWithin(
-      target.index, source.samples, pose, kLocalRefinementSteps, kHypothesisSeparation,
-      2.0 * target.coarse.grid.voxel_size, &target.reach_index);
+  const RigidPose refined =
+      refinePoseWithin(target.index, all_samples ? source.samples : source.polish, pose,
+                       kLocalRefinementSteps, kHypothesisSeparation,
+                       2.0 * target.coarse.grid.voxel_size, &target.reach_index);
   times.verification += msSince(start);
   if (refined.R == pose.R && refined.t == pose.t)
     return pose; // refused or nothing to climb: verifies as before
@@ -291,7 +292,8 @@ Pose reprojectionPasses(const SourceContext& source, Pose pose, int& passes,
   return pose;
 }
 
-Pose refineFinalPose(const SourceContext& source, Pose pose, PhaserResult& result)
+Pose refineFinalPose(const SourceContext& source, Pose pose, bool decided,
+                     PhaserResult& result)
 {
   const StageParameters& params = source.params;
   StageTimes& times = result.diagnostics.times;
@@ -302,8 +304,10 @@ Pose refineFinalPose(const SourceContext& source, Pose pose, PhaserResult& resul
                  : rotationFromEuler(gridEuler(pose.peak, params.bandwidth));
   const std::shared_ptr<const So3CorrelationGrid> rotation_grid = pose.grid;
   const So3GridIndex peak = pose.peak;
-  double value = 0.0;
-  const Eigen::Matrix3d dR = refineResidualRotation(source, *view, start, value, times);
+  double value = (*rotation_grid)(peak);
+  const Eigen::Matrix3d dR =
+      decided ? Eigen::Matrix3d::Identity()
+              : refineResidualRotation(source, *view, start, value, times);
   Pose next;
   next.verifiable = pose.verifiable;
   next.R = dR * pose.R;
@@ -314,7 +318,7 @@ Pose refineFinalPose(const SourceContext& source, Pose pose, PhaserResult& resul
   if (measured && improves(next, pose))
     pose = next;
   if (pose.verifiable)
-    pose = refineOnSamples(source, pose, times, params.num_threads);
+    pose = refineOnSamples(source, pose, times, params.num_threads, true);
   rotationSamples(*rotation_grid, peak, pose.R, result.diagnostics);
   return pose;
 }

@@ -38,12 +38,14 @@ double maxShift(const SourceContext& source);
 /** \a pose refined on the verification samples (refinePoseWithin: within the
  *  hypothesis separation and two coarse voxels), kept when it ranks higher. */
 Pose refineOnSamples(const SourceContext& source, const Pose& pose, StageTimes& times,
-                     int num_threads);
+                     int num_threads, bool all_samples = false);
 /** Later passes from \a pose's viewpoint, kept while they verify better (\a passes). */
 Pose reprojectionPasses(const SourceContext& source, Pose pose, int& passes,
                         StageTimes& times);
-/** The final rotation refinement and shift (kept when they verify better) and the local
- *  refinement; scores, translation covariance and rotation samples into \a result. */
-Pose refineFinalPose(const SourceContext& source, Pose pose, PhaserResult& result);
+/** The final rotation refinement (not when \a decided) and shift (kept when they verify
+ *  better) and the local refinement; scores, translation covariance and rotation
+ *  samples into \a result. */
+Pose refineFinalPose(const SourceContext& source, Pose pose, bool decided,
+                     PhaserResult& result);
 
 } // namespace pcl::phaser::detail

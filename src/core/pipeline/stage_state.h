@@ -106,6 +106,7 @@ struct SourceContext {
   const ChannelValues& channels;
   const StageParameters& params;
   VerificationSamples samples;    ///< evenly spaced source points for verifyPose
+  VerificationSamples polish;     ///< samples thinned for the polish's steps
   SurfacePatches patches;         ///< planar patches of the source (coarse voxels)
   FreeSpace free_space;           ///< what the source's sensor saw through
   Eigen::Matrix3Xd coarse_points; ///< thinned for the pass-1 (binary) occupancy grids
@@ -116,6 +117,10 @@ struct GlobalSearch {
   std::vector<Hypothesis> hypotheses;
   int chosen = 0;
   Pose pose;
+  /** The first choice was verified, within the limits and distinct: the later passes
+   *  and the rotation refinement are skipped (they change such a pose by hundredths of
+   *  a degree, if at all). */
+  bool decided = false;
 };
 
 /** \a task(k) for k = 0 .. count - 1 as independent one-thread tasks; the first
