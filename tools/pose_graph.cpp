@@ -10,6 +10,7 @@
 #include <ceres/ceres.h>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -178,6 +179,31 @@ std::string optimize(PoseGraph& graph, Loss loss, std::string* summary)
   for (auto& [id, T] : graph.vertices) {
     T.linear() = blocks.at(id).q.normalized().toRotationMatrix();
     T.translation() = blocks.at(id).t;
+  }
+  return {};
+}
+
+std::string driftOdometry(PoseGraph& graph, double deg_per_step, double scale_per_step)
+{
+  std::map<int, Edge*> steps;
+  for (Edge& e : graph.edges)
+    if (e.odometry && !steps.emplace(e.from, &e).second)
+      return "two edges from vertex " + std::to_string(e.from) + " to the next";
+  const Eigen::Isometry3d bias(
+      Eigen::AngleAxisd(deg_per_step * M_PI / 180.0, Eigen::Vector3d::UnitZ()));
+  for (auto at = graph.vertices.begin(), next = std::next(at);
+       next != graph.vertices.end(); ++at, ++next) {
+    const auto step = steps.find(at->first);
+    if (static_cast<long long>(next->first) != at->first + 1LL || step == steps.end())
+      return "no odometry edge from vertex " + std::to_string(at->first) +
+             " to the next (pcl_phaser_batch --odometry writes them)";
+    Edge& e = *step->second;
+    const Eigen::Isometry3d drifted =
+        bias * Eigen::Translation3d((1.0 + scale_per_step) * e.translation) *
+        e.rotation;
+    e.translation = drifted.translation();
+    e.rotation = Eigen::Quaterniond(drifted.linear()).normalized();
+    next->second = at->second * drifted;
   }
   return {};
 }

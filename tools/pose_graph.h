@@ -50,6 +50,15 @@ enum class Loss { None, Huber, Cauchy };
  *  empty */
 std::string optimize(PoseGraph& graph, Loss loss, std::string* summary = nullptr);
 
+/** \brief Make the odometry drift, as a dead-reckoning sensor would: each edge from a
+ *  vertex to the next (the odometry edges of pcl_phaser_batch --odometry) gets its
+ *  translation scaled by 1 + \a scale_per_step and a heading bias of \a deg_per_step
+ *  degrees (about the vertex's z axis, before the step); the vertices after the first
+ *  become the chain of these edges from it. Loop edges, information and FIX stay.
+ *  \return the reason on failure (a vertex without exactly one edge to the next id),
+ *  else empty */
+std::string driftOdometry(PoseGraph& graph, double deg_per_step, double scale_per_step);
+
 /** \brief The vertices as a poses file: per vertex, in id order, the 12 numbers of its
  *  row-major 3x4 T_world_vertex (as pcl_phaser_batch --poses reads). */
 std::string posesText(const PoseGraph& graph);

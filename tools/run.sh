@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Set up a Debian 12 machine (as root), build pcl_phaser, and run one job.
 #   tools/run.sh demo   install deps, build pcl_phaser_align, run it on its embedded default
-#   tools/run.sh test   install deps, build everything (bench/ too), run the whole test suite
+#   tools/run.sh test   install deps (gnuplot too), build everything (bench/ too), run the whole
+#                       test suite
 #   tools/run.sh benchmark [ARGS]   also installs gnuplot, then runs pcl_phaser_benchmark
 #                       (default: all methods on the shared scans; see doc/benchmarks.md)
 # Idempotent: packages already installed are skipped, the build directory is reused.
@@ -14,7 +15,8 @@ build=${PCL_PHASER_BUILD_DIR:-$here/build}
 # pcl-tools: pcl_viewer, which the demo's last line suggests for its overlay.
 packages=(g++ make cmake pkg-config libpcl-dev libeigen3-dev libfftw3-dev libboost-dev
           libgtest-dev nlohmann-json3-dev xvfb xauth pcl-tools)
-if [[ $job == benchmark ]]; then packages+=(gnuplot-nox); fi
+# gnuplot-nox: the benchmark's plots, and pcl_phaser_optimize --png (its tests).
+if [[ $job == benchmark || $job == test ]]; then packages+=(gnuplot-nox); fi
 # The batch tool's tests run it sharded under GNU parallel and a single-node Slurm;
 # libceres-dev builds pcl_phaser_optimize (the pose graph) and its tests.
 if [[ $job == test ]]; then packages+=(parallel slurm-wlm munge libceres-dev); fi

@@ -4,12 +4,16 @@
  */
 #include "trajectory_plot.h"
 
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
+#include <cerrno>
+#include <cstdlib>
+#include <fcntl.h>
+#include <filesystem>
 #include <fstream>
-#include <limits>
-#include <zlib.h>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <system_error>
+#include <unistd.h>
 
 namespace pcl {
 namespace phaser {
@@ -17,107 +21,141 @@ namespace graph {
 
 namespace {
 
-/** An RGB raster, row 0 at the top. */
-struct Image {
-  int size;
-  std::vector<unsigned char> rgb;
-  void dot(int x, int y, const std::array<unsigned char, 3>& c)
-  {
-    for (int dy = 0; dy < 2; ++dy)
-      for (int dx = 0; dx < 2; ++dx) {
-        const int u = x + dx, v = y + dy;
-        if (u >= 0 && v >= 0 && u < size && v < size)
-          std::copy(c.begin(), c.end(), rgb.begin() + 3 * (v * size + u));
-      }
-  }
-  void line(Eigen::Vector2d a, Eigen::Vector2d b, const std::array<unsigned char, 3>& c)
-  {
-    const int steps =
-        std::max(1, static_cast<int>(std::ceil((b - a).cwiseAbs().maxCoeff())));
-    for (int k = 0; k <= steps; ++k) {
-      const Eigen::Vector2d p = a + (b - a) * (static_cast<double>(k) / steps);
-      dot(static_cast<int>(std::lround(p.x())), static_cast<int>(std::lround(p.y())),
-          c);
+const char* const kInstall = "the PNG needs gnuplot: apt-get install gnuplot-nox";
+
+/** \a text as a gnuplot single-quoted string ('' is a quote), newlines as "\n". */
+std::string quoted(const std::string& text)
+{
+  std::string out = "'";
+  for (const char c : text)
+    if (c == '\'')
+      out += "''";
+    else if (c == '\n')
+      out += "'.\"\\n\".'";
+    else if (static_cast<unsigned char>(c) >= ' ')
+      out += c;
+  return out + "'";
+}
+
+/** The gnuplot script: pngcairo when built in (else png), to plot.png beside it. */
+std::string script(const std::string& title, const std::vector<Series>& series,
+                   int size)
+{
+  std::ostringstream gp;
+  const std::string dims = "size " + std::to_string(size) + "," + std::to_string(size);
+  gp << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
+     << "  set terminal pngcairo " << dims << " noenhanced font 'sans,11'\n"
+     << "} else {\n  set terminal png " << dims << " noenhanced\n}\n"
+     << "set output 'plot.png'\nset title " << quoted(title) << "\n"
+     << "set xlabel 'x [m]'\nset ylabel 'y [m]'\nset size ratio -1\n"
+     << "set grid lc rgb '#e0e0e0'\nset bmargin 8\n"
+     << "set key at screen 0.5,0.02 center bottom Left reverse box\nplot ";
+  const char* separator = "";
+  for (std::size_t k = 0; k < series.size(); ++k)
+    if (!series[k].points.empty()) {
+      gp << separator << "'series" << k << ".dat' with lines lw " << series[k].width
+         << " lc rgb " << quoted(series[k].color) << " title "
+         << quoted(series[k].title);
+      separator = ", \\\n     ";
     }
-  }
-};
-
-void putU32(std::string& out, std::uint32_t v)
-{
-  for (int shift = 24; shift >= 0; shift -= 8)
-    out.push_back(static_cast<char>((v >> shift) & 0xff));
+  gp << "\n";
+  return gp.str();
 }
 
-void chunk(std::string& out, const char* type, const std::string& data)
+/** The points of \a s, one x y a line; a blank line ends each segment when not
+ *  connected. */
+std::string data(const Series& s)
 {
-  putU32(out, static_cast<std::uint32_t>(data.size()));
-  const std::string body = std::string(type, 4) + data;
-  out += body;
-  putU32(out, static_cast<std::uint32_t>(
-                  crc32(0L, reinterpret_cast<const Bytef*>(body.data()),
-                        static_cast<uInt>(body.size()))));
+  std::ostringstream out;
+  out.precision(10);
+  for (std::size_t k = 0; k < s.points.size(); ++k) {
+    out << s.points[k].x() << " " << s.points[k].y() << "\n";
+    if (!s.connected && k % 2 == 1)
+      out << "\n";
+  }
+  return out.str();
 }
 
-/** The PNG file of \a image (filter 0 on every row), or empty when zlib fails. */
-std::string encodePng(const Image& image)
+/** The first lines of \a path, on one line. */
+std::string head(const std::string& path)
 {
-  std::string raw;
-  for (int y = 0; y < image.size; ++y) {
-    raw.push_back('\0');
-    raw.append(reinterpret_cast<const char*>(image.rgb.data()) + 3 * y * image.size,
-               static_cast<std::size_t>(3 * image.size));
+  std::ifstream in(path);
+  std::string text, line;
+  for (int n = 0; n < 4 && std::getline(in, line); ++n)
+    text += (n ? " | " : "") + line;
+  return text.empty() ? "no message" : text;
+}
+
+/** Run `gnuplot plot.gp` in \a folder, its output to gnuplot.log there.
+ *  \return the reason on failure, else empty */
+std::string runGnuplot(const std::string& folder)
+{
+  const pid_t pid = ::fork();
+  if (pid < 0)
+    return std::string("cannot start gnuplot (fork failed); ") + kInstall;
+  if (pid == 0) { // only async-signal-safe calls until exec
+    if (::chdir(folder.c_str()) == 0) {
+      const int log = ::open("gnuplot.log", O_WRONLY | O_CREAT | O_TRUNC, 0600);
+      if (log >= 0 && ::dup2(log, 1) >= 0 && ::dup2(log, 2) >= 0) {
+        ::execlp("gnuplot", "gnuplot", "plot.gp", static_cast<char*>(nullptr));
+        const char missing[] = "gnuplot not found on PATH";
+        [[maybe_unused]] const ssize_t n = ::write(2, missing, sizeof(missing) - 1);
+      }
+    }
+    ::_exit(127);
   }
-  uLongf packed_size = compressBound(static_cast<uLong>(raw.size()));
-  std::string packed(packed_size, '\0');
-  if (compress2(reinterpret_cast<Bytef*>(packed.data()), &packed_size,
-                reinterpret_cast<const Bytef*>(raw.data()),
-                static_cast<uLong>(raw.size()), 9) != Z_OK)
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR)
+      return std::string("lost the gnuplot process; ") + kInstall;
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
     return {};
-  packed.resize(packed_size);
-  std::string header;
-  putU32(header, static_cast<std::uint32_t>(image.size));
-  putU32(header, static_cast<std::uint32_t>(image.size));
-  header += std::string("\x08\x02\x00\x00\x00", 5); // 8-bit RGB, no interlace
-  std::string png("\x89PNG\r\n\x1a\n", 8);
-  chunk(png, "IHDR", header);
-  chunk(png, "IDAT", packed);
-  chunk(png, "IEND", "");
-  return png;
+  const std::string how = WIFEXITED(status)
+                              ? "exit code " + std::to_string(WEXITSTATUS(status))
+                              : "signal " + std::to_string(WTERMSIG(status));
+  return "gnuplot failed (" + how + ": " + head(folder + "/gnuplot.log") + "); " +
+         kInstall;
+}
+
+/** Write the data and script into \a folder, run gnuplot, copy its PNG to \a path. */
+std::string plotIn(const std::string& folder, const std::string& path,
+                   const std::string& title, const std::vector<Series>& series,
+                   int size)
+{
+  for (std::size_t k = 0; k < series.size(); ++k)
+    if (!(std::ofstream(folder + "/series" + std::to_string(k) + ".dat")
+          << data(series[k])))
+      return "cannot write to the temporary directory '" + folder + "'";
+  if (!(std::ofstream(folder + "/plot.gp") << script(title, series, size)))
+    return "cannot write to the temporary directory '" + folder + "'";
+  if (const std::string error = runGnuplot(folder); !error.empty())
+    return error;
+  std::error_code ec;
+  if (std::filesystem::file_size(folder + "/plot.png", ec) == 0 || ec)
+    return std::string("gnuplot wrote no PNG; ") + kInstall;
+  std::filesystem::copy_file(folder + "/plot.png", path,
+                             std::filesystem::copy_options::overwrite_existing, ec);
+  return ec ? "cannot write '" + path + "': " + ec.message() : "";
 }
 
 } // namespace
 
-std::string writeTopView(const std::string& path, const std::vector<Polyline>& lines,
-                         int size)
+std::string writeTopView(const std::string& path, const std::string& title,
+                         const std::vector<Series>& series, int size)
 {
-  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::max());
-  Eigen::Vector2d hi = -lo;
-  for (const Polyline& l : lines)
-    for (const Eigen::Vector2d& p : l.points) {
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
-  if (!(hi.x() >= lo.x()))
+  bool empty = true;
+  for (const Series& s : series)
+    empty = empty && s.points.empty();
+  if (empty)
     return "nothing to draw";
-  const double margin = 0.05 * size;
-  const double scale = (size - 2.0 * margin) / std::max(1e-9, (hi - lo).maxCoeff());
-  const Eigen::Vector2d center = 0.5 * (lo + hi);
-  const auto pixel = [&](const Eigen::Vector2d& p) {
-    return Eigen::Vector2d(0.5 * size + scale * (p.x() - center.x()),
-                           0.5 * size - scale * (p.y() - center.y()));
-  };
-  Image image{
-      size, std::vector<unsigned char>(static_cast<std::size_t>(3 * size * size), 255)};
-  for (const Polyline& l : lines) {
-    const std::size_t stride = l.connected ? 1 : 2;
-    for (std::size_t k = 0; k + 1 < l.points.size(); k += stride)
-      image.line(pixel(l.points[k]), pixel(l.points[k + 1]), l.color);
-  }
-  const std::string png = encodePng(image);
-  std::ofstream out(path, std::ios::binary);
-  if (png.empty() || !out.write(png.data(), static_cast<std::streamsize>(png.size())))
-    return "cannot write '" + path + "'";
-  return {};
+  std::error_code ec;
+  const std::string base = std::filesystem::temp_directory_path(ec).string();
+  std::string name = (ec ? "/tmp" : base) + "/pcl_phaser_plot_XXXXXX";
+  if (!::mkdtemp(name.data()))
+    return "cannot create a temporary directory for gnuplot ('" + name + "')";
+  const std::string error = plotIn(name, path, title, series, size);
+  std::filesystem::remove_all(name, ec);
+  return error;
 }
 
 } // namespace graph
