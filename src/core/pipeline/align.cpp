@@ -8,6 +8,7 @@
 #include "pipeline/estimate.h"
 #include "pipeline/projection_center.h"
 #include "priors/allowed_poses.h"
+#include "support/buffer_pool.h"
 
 #include <mutex>
 #include <new>
@@ -45,6 +46,11 @@ public:
 namespace {
 
 constexpr double kMaxCoordinate = 1e6; ///< beyond: float32 is coarser than 6 cm
+/** Most voxels a side of the translation grid of clouds not seen from their center
+ *  (objects): the polish, not the grid, pins their translation, and 128 voxels put
+ *  several grid cells between a bunny view's points (the bunny pairs: as right at 64,
+ *  2.4x faster). */
+constexpr int kObjectGridSize = 64;
 /** Empty when a cloud can be registered, else why not. */
 std::string checkCloud(const Eigen::Matrix3Xd& points, const ChannelValues& channels,
                        const char* which)
@@ -238,6 +244,10 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
       stage_params.viewpoints &&
       hiddenShare(moved, guess.topRightCorner<3, 1>()) <= kMaxHiddenShare;
   stage_params.num_threads = resolveThreadCount(params.num_threads);
+  if (stage_params.sensor_centered && !stage_params.viewpoints &&
+      params.voxel_size == 0.0)
+    stage_params.spatial_grid_size =
+        std::min(params.spatial_grid_size, kObjectGridSize);
   // The tilt pull it corrects comes from a scanner's band, seen about its origin only.
   stage_params.normalized_refinement =
       params.normalized_refinement && stage_params.sensor_centered;
@@ -292,6 +302,7 @@ PhaserResult align(const Target& target, const SourceCloud& source,
   if (!problem.empty())
     return failed(guess, problem);
   try {
+    const detail::BufferPoolScope reuse_buffers;
     return alignChecked(target, source, guess, params);
   } catch (const InvalidArgument& e) {
     return failed(guess, e.what());

@@ -4,6 +4,7 @@
  */
 #include "so3/so3_correlation.h"
 #include "so3/wigner.h"
+#include "support/buffer_pool.h"
 #include "support/error.h"
 #include "support/fftw_support.h"
 #include "support/instance_cache.h"
@@ -276,7 +277,9 @@ So3CorrelationGrid So3Correlator::correlate(const SphericalSpectrum& target,
   grid.beta_rows_ = rows;
   grid.row_stride_ = 2 * layout.nh;
   // Only the computed rows are stored (operator() gives -infinity beyond them).
-  grid.data_.reset(detail::fftwAllocate<double>(2 * layout.slice * rows).release());
+  const std::size_t bytes = sizeof(double) * 2 * layout.slice * rows;
+  grid.data_ = std::unique_ptr<double[], So3CorrelationGrid::FftwFree>(
+      static_cast<double*>(detail::bufferAcquire(bytes)), {bytes});
   layout.T = reinterpret_cast<Complex*>(grid.data_.get());
 
   const WignerTables tables{*steps_, log_factorials_, cos_beta_, log_cos_half_,

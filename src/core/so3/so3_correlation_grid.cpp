@@ -3,6 +3,7 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  */
 #include "so3/so3_correlation_grid.h"
+#include "support/buffer_pool.h"
 #include "support/error.h"
 #include "support/fftw_support.h"
 #include "support/parallel.h"
@@ -70,7 +71,7 @@ int betaRowsForTilt(int output_bandwidth, double max_tilt)
 
 void So3CorrelationGrid::FftwFree::operator()(double* p) const
 {
-  fftw_free(p);
+  detail::bufferRelease(p, bytes);
 }
 
 void So3CorrelationGrid::accumulate(const So3CorrelationGrid& other)

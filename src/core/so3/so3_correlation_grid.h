@@ -80,7 +80,8 @@ private:
   int output_bandwidth_ = 0;
   int beta_rows_ = 0;
   std::size_t row_stride_ = 0; // 2 (Bo + 1): in-place c2r rows are padded
-  struct FftwFree { // fftw_free, out of line: FFTW stays private to the engine
+  struct FftwFree { // bufferRelease, out of line: FFTW stays private to the engine
+    std::size_t bytes; // value-initialized (0) with no buffer
     void operator()(double* p) const;
   };
   std::unique_ptr<double[], FftwFree> data_; // beta_rows_ * N * row_stride_ doubles

@@ -5,6 +5,7 @@
 #include "spatial/spatial_correlation.h"
 #include "spatial/spatial_fft.h"
 #include "spatial/spatial_grid_support.h"
+#include "support/buffer_pool.h"
 #include "support/error.h"
 #include "support/fftw_support.h"
 #include "support/parallel.h"
@@ -25,15 +26,12 @@ namespace detail {
 
 void* spatialBufferAllocate(std::size_t bytes)
 {
-  void* p = fftw_malloc(bytes ? bytes : 1);
-  if (!p)
-    throw std::bad_alloc();
-  return p;
+  return bufferAcquire(bytes);
 }
 
-void spatialBufferFree(void* p) noexcept
+void spatialBufferFree(void* p, std::size_t bytes) noexcept
 {
-  fftw_free(p);
+  bufferRelease(p, bytes);
 }
 
 } // namespace detail

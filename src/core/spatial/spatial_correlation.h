@@ -16,9 +16,10 @@ namespace pcl::phaser {
 
 namespace detail {
 
-/** \brief fftw_malloc and fftw_free, without <fftw3.h> here; \throws std::bad_alloc. */
+/** \brief FFTW-aligned buffers (bufferAcquire, bufferRelease: reused within an align),
+ *  without <fftw3.h> here; \throws std::bad_alloc. */
 void* spatialBufferAllocate(std::size_t bytes);
-void spatialBufferFree(void* p) noexcept;
+void spatialBufferFree(void* p, std::size_t bytes) noexcept;
 
 /** \brief Allocator of FFTW-aligned memory: FFTW's new-array execute functions need the
  *  SIMD alignment the plan was made with, which std::allocator does not promise.
@@ -48,7 +49,7 @@ struct SpatialAllocator {
   {
     return static_cast<T*>(spatialBufferAllocate(n * sizeof(T)));
   }
-  void deallocate(T* p, std::size_t) noexcept { spatialBufferFree(p); }
+  void deallocate(T* p, std::size_t n) noexcept { spatialBufferFree(p, n * sizeof(T)); }
   template <typename U>
   bool operator==(const SpatialAllocator<U>&) const noexcept
   {
