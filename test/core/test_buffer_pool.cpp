@@ -77,7 +77,7 @@ TEST(BufferPool, WorksWithoutAScopeAndForEmptyBuffers)
 {
   void* p = bufferAcquire(kLarge);
   ASSERT_NE(p, nullptr);
-  bufferRelease(p, kLarge); // freed at once
+  bufferRelease(p, kLarge); // kept for the next align, or freed
   void* empty = bufferAcquire(0);
   ASSERT_NE(empty, nullptr);
   bufferRelease(empty, 0);

@@ -20,6 +20,10 @@ constexpr std::size_t kMinKeptBytes = std::size_t(1) << 20;
 /** Most bytes kept: two threads' correlations at a 128^3 grid need about six buffers
  *  of 16-17 MB. */
 constexpr std::size_t kMaxKeptBytes = std::size_t(256) << 20;
+/** Most bytes kept once no align runs: what malloc's heap kept for the next align
+ *  before (freeing them all at once made it hand the memory back, and a warm process
+ *  fault it in again: 1.7k -> 9-18k minor faults a revisit). */
+constexpr std::size_t kIdleKeptBytes = std::size_t(128) << 20;
 
 struct Pool {
   std::mutex mutex;
@@ -27,13 +31,16 @@ struct Pool {
   std::size_t kept_bytes = 0;
   std::vector<std::pair<void*, std::size_t>> kept;
 
-  /** Frees every kept buffer (the lock held). */
-  void clear()
+  /** Frees the oldest kept buffers until at most \a budget bytes remain (the lock
+   *  held). */
+  void shrink(std::size_t budget)
   {
-    for (const auto& buffer : kept)
-      fftw_free(buffer.first);
-    kept.clear();
-    kept_bytes = 0;
+    std::size_t k = 0;
+    for (; k < kept.size() && kept_bytes > budget; ++k) {
+      fftw_free(kept[k].first);
+      kept_bytes -= kept[k].second;
+    }
+    kept.erase(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(k));
   }
 };
 
@@ -57,7 +64,7 @@ BufferPoolScope::~BufferPoolScope()
   Pool& p = pool();
   std::lock_guard<std::mutex> lock(p.mutex);
   if (--p.scopes == 0)
-    p.clear();
+    p.shrink(kIdleKeptBytes);
 }
 
 void* bufferAcquire(std::size_t bytes)
@@ -86,7 +93,8 @@ void bufferRelease(void* buffer, std::size_t bytes) noexcept
   if (bytes >= kMinKeptBytes) {
     Pool& p = pool();
     std::lock_guard<std::mutex> lock(p.mutex);
-    if (p.scopes > 0 && p.kept_bytes + bytes <= kMaxKeptBytes) {
+    const std::size_t budget = p.scopes > 0 ? kMaxKeptBytes : kIdleKeptBytes;
+    if (p.kept_bytes + bytes <= budget) {
       try {
         p.kept.emplace_back(buffer, bytes);
         p.kept_bytes += bytes;
