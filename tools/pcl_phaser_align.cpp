@@ -17,6 +17,7 @@
  */
 #include "cloud_reading.h"
 #include "pcl_phaser_align_help.h"
+#include "pcl_phaser_align_icp.h"
 #include "pcl_phaser_align_options.h"
 #include "pcl_phaser_align_screenshot.h"
 #include "pcl_phaser_align_steps.h"
@@ -149,6 +150,28 @@ pcl::PointCloud<pcl::PointXYZRGB>::Ptr overlayOf(const pcl::PointCloud<PointT>& 
   return overlay;
 }
 
+/** ICP from res.global's pose into \a res.icp with align::toolIcpSettings(): the
+ *  clouds thinned, the correspondence distance from the global pose's covariance. */
+template <typename PointT>
+void refineWithIcp(const typename pcl::PointCloud<PointT>::Ptr& source,
+                   const typename pcl::PointCloud<PointT>::Ptr& target,
+                   const Options& opt, pcl::PhaserRegistration<PointT, PointT>& phaser,
+                   Result& res)
+{
+  print_highlight("Refining with %s ICP ",
+                  opt.icp_point ? "point-to-point" : "point-to-plane");
+  align::IcpSettings icp = align::toolIcpSettings(opt.icp_distance, opt.icp_point,
+                                                  phaser.getCovariance(), *source);
+  icp.threads = phaser.getNumberOfThreads();
+  align::IcpRun run;
+  align::refine<PointT>(source, target, res.global.transform, icp, res.icp, run);
+  print_info("(%zu + %zu points, correspondences within %.3g m) [done, ",
+             run.source_points, run.target_points, icp.max_distance);
+  print_value("%g", res.icp.time_ms);
+  print_info(" ms : %d iterations, %s]\n", run.iterations,
+             res.icp.converged ? "converged" : "NOT converged");
+}
+
 template <typename PointT>
 int compute(const pcl::PCLPointCloud2& source_blob,
             const pcl::PCLPointCloud2& target_blob, const Options& opt, Result& res)
@@ -163,22 +186,8 @@ int compute(const pcl::PCLPointCloud2& source_blob,
   res.target_points = target->size();
   pcl::PhaserRegistration<PointT, PointT> phaser;
   registerGlobally<PointT>(phaser, source, target, opt, res);
-  if (opt.icp && res.global.converged) {
-    print_highlight("Refining with %s ICP ",
-                    opt.icp_point ? "point-to-point" : "point-to-plane");
-    align::IcpSettings icp;
-    icp.max_distance = opt.icp_distance;
-    icp.iterations = icp_iterations;
-    icp.transformation_epsilon = icp_transformation_epsilon;
-    icp.normal_neighbors = icp_normal_neighbors;
-    icp.point_to_point = opt.icp_point;
-    icp.voxel_size = icp_voxel_fraction * opt.icp_distance;
-    icp.threads = phaser.getNumberOfThreads();
-    align::refine<PointT>(source, target, res.global.transform, icp, res.icp);
-    print_info("[done, ");
-    print_value("%g", res.icp.time_ms);
-    print_info(" ms : %s]\n", res.icp.converged ? "converged" : "NOT converged");
-  }
+  if (opt.icp && res.global.converged)
+    refineWithIcp<PointT>(source, target, opt, phaser, res);
   res.overlay = overlayOf(*source, *target, res.final());
   return (kOk);
 }

@@ -3,6 +3,7 @@
 //
 // pcl_phaser_align's help text, its defaults and ranges read from the code.
 #include "pcl_phaser_align_help.h"
+#include "pcl_phaser_align_icp.h"
 #include "pcl_phaser_align_options.h"
 
 #include <pcl_phaser/phaser_registration.h>
@@ -21,14 +22,17 @@ void printOutputHelp()
 {
   print_info(
       "    -icp                = refine with point-to-plane ICP "
-      "(pcl::IterativeClosestPointWithNormals, normals\n"
-      "                          from %d neighbors) from the PHASER estimate: %d "
-      "iterations, transformation epsilon %g, on both clouds\n"
-      "                          reduced to one point per voxel of a quarter of "
-      "--icp-dist\n"
+      "(pcl::IterativeClosestPointWithNormals, target normals\n"
+      "                          from %d neighbors) from the PHASER estimate: at most "
+      "%d iterations, transformation epsilon %g,\n"
+      "                          the target reduced to one point per voxel of a "
+      "quarter of --icp-dist, the source to half;\n"
+      "                          correspondences within %g sigma of the PHASER "
+      "covariance, at least one target voxel\n"
       "    --icp-point         = with -icp: plain point-to-point "
       "pcl::IterativeClosestPoint instead\n"
-      "    --icp-dist D        = ICP max correspondence distance in m (default: %g)\n"
+      "    --icp-dist D        = ICP's largest correspondence distance in m, and the "
+      "scale of its voxels (default: %g)\n"
       "    -o FILE             = save SOURCE moved by the final transform, all fields "
       "kept (.pcd/.ply/.bin)\n"
       "    -m FILE             = save the overlay, aligned source red + target green "
@@ -41,7 +45,7 @@ void printOutputHelp()
       "    --json              = print one JSON object on stdout, everything else on "
       "stderr\n",
       icp_normal_neighbors, icp_iterations, icp_transformation_epsilon,
-      default_icp_distance, default_width, default_height);
+      icp_distance_sigmas, default_icp_distance, default_width, default_height);
 }
 
 } // namespace

@@ -44,13 +44,6 @@ enum ExitCode {
 const int default_demo_threads = 2;
 const int default_seed = 1;
 const double default_icp_distance = 1.0; // meters
-const int icp_iterations = 50;
-const double icp_transformation_epsilon = 1e-8;
-const int icp_normal_neighbors = 15;
-// ICP runs on both clouds reduced to one point per voxel of this edge, a quarter of the
-// correspondence distance (0.25 m by default): refinement then costs less than the
-// global stage, and the errors are still measured against the truth of the full clouds.
-const double icp_voxel_fraction = 0.25;
 const int default_width = 1024, default_height = 768;
 const char* const default_demo_overlay = "phaser_demo_overlay.pcd";
 // The demo passes when the global stage and ICP are this close to the truth (seed 1's

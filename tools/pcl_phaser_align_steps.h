@@ -4,20 +4,16 @@
 /** \file pcl_phaser_align_steps.h
  * \brief The quiet steps of `pcl_phaser_align`: build the finite typed cloud that is
  * registered from a PCLPointCloud2, move a blob in place so that every field of the
- * input file survives in the -o output, refine with ICP, and measure the errors
- * against a known transform.
+ * input file survives in the -o output, and measure the errors against a known
+ * transform. The ICP refinement: pcl_phaser_align_icp.h.
  */
 #pragma once
 
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/common/io.h>
-#include <pcl/console/time.h>
-#include <pcl/features/normal_3d_omp.h>
 #include <pcl/filters/filter.h>
-#include <pcl/filters/voxel_grid.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
-#include <pcl/registration/icp.h>
 
 #include <Eigen/Core>
 
@@ -162,91 +158,6 @@ inline void computeErrors(Stage& s, const Eigen::Matrix4d& truth)
   s.rre_deg = std::atan2(0.5 * axis.norm(), 0.5 * (dR.trace() - 1.0)) * 180.0 /
               3.14159265358979323846;
   s.rte_m = (s.transform.topRightCorner<3, 1>() - truth.topRightCorner<3, 1>()).norm();
-}
-
-/** \brief How refine() runs ICP. */
-struct IcpSettings {
-  double max_distance = 1.0;            ///< max correspondence distance, meters
-  int iterations = 50;                  ///< maximum number of iterations
-  double transformation_epsilon = 1e-8; ///< convergence on the transform change
-  int normal_neighbors = 15;            ///< k of the normal estimation (point-to-plane)
-  bool point_to_point = false;          ///< plain pcl::IterativeClosestPoint
-  unsigned threads = 1;                 ///< threads of the normal estimation
-  /** \brief Edge (meters) of the pcl::VoxelGrid that both clouds are reduced to
-   *  before ICP (one centroid per occupied voxel), so refinement costs less than the
-   *  global stage; 0: the full clouds. */
-  double voxel_size = 0.0;
-};
-
-/** \brief \a cloud reduced to one centroid per occupied voxel of edge \a voxel_size,
- *  or \a cloud itself when \a voxel_size is 0. */
-template <typename PointT>
-typename pcl::PointCloud<PointT>::Ptr
-downsample(const typename pcl::PointCloud<PointT>::Ptr& cloud, double voxel_size)
-{
-  if (!(voxel_size > 0.0))
-    return cloud;
-  auto out = pcl::make_shared<pcl::PointCloud<PointT>>();
-  pcl::VoxelGrid<PointT> grid;
-  const float leaf = static_cast<float>(voxel_size);
-  grid.setLeafSize(leaf, leaf, leaf);
-  grid.setInputCloud(cloud);
-  grid.filter(*out);
-  return out;
-}
-
-/** \brief ICP from \a guess, in double precision (which also keeps GCC 12's false
- * -Warray-bounds in PCL's float SVD estimation away), on the clouds reduced by
- * downsample() to settings.voxel_size. Point-to-plane by default:
- * pcl::IterativeClosestPointWithNormals on copies of the clouds with normals from
- * pcl::NormalEstimationOMP (points whose normal is undefined are left out); with
- * point_to_point, plain pcl::IterativeClosestPoint.
- * \param[in] source,target finite clouds
- * \param[in] guess the initial T_target_source
- * \param[in] settings ICP parameters
- * \param[out] s transform, converged, time_ms and ran */
-template <typename PointT>
-void refine(const typename pcl::PointCloud<PointT>::Ptr& full_source,
-            const typename pcl::PointCloud<PointT>::Ptr& full_target,
-            const Eigen::Matrix4d& guess, const IcpSettings& settings, Stage& s)
-{
-  pcl::console::TicToc tt;
-  tt.tic();
-  const auto source = downsample<PointT>(full_source, settings.voxel_size);
-  const auto target = downsample<PointT>(full_target, settings.voxel_size);
-  const auto run = [&](auto& icp, const auto& src, const auto& tgt) {
-    icp.setMaxCorrespondenceDistance(settings.max_distance);
-    icp.setMaximumIterations(settings.iterations);
-    icp.setTransformationEpsilon(settings.transformation_epsilon);
-    icp.setInputSource(src);
-    icp.setInputTarget(tgt);
-    std::decay_t<decltype(*src)> aligned;
-    icp.align(aligned, guess);
-    s.converged = icp.hasConverged();
-    s.transform = icp.getFinalTransformation();
-  };
-  if (settings.point_to_point) {
-    pcl::IterativeClosestPoint<PointT, PointT, double> icp;
-    run(icp, source, target);
-  } else {
-    using NormalT = std::conditional_t<pcl::traits::has_intensity_v<PointT>,
-                                       pcl::PointXYZINormal, pcl::PointNormal>;
-    typename pcl::PointCloud<NormalT>::Ptr clouds[2];
-    for (int k = 0; k < 2; ++k) {
-      clouds[k] = pcl::make_shared<pcl::PointCloud<NormalT>>();
-      pcl::copyPointCloud(k ? *target : *source, *clouds[k]);
-      pcl::NormalEstimationOMP<NormalT, NormalT> ne(settings.threads);
-      ne.setKSearch(settings.normal_neighbors);
-      ne.setInputCloud(clouds[k]);
-      ne.compute(*clouds[k]);
-      pcl::Indices kept;
-      pcl::removeNaNNormalsFromPointCloud(*clouds[k], *clouds[k], kept);
-    }
-    pcl::IterativeClosestPointWithNormals<NormalT, NormalT, double> icp;
-    run(icp, clouds[0], clouds[1]);
-  }
-  s.time_ms = tt.toc();
-  s.ran = true;
 }
 
 } // namespace align_tool
