@@ -46,8 +46,10 @@ struct Pool {
 
 Pool& pool()
 {
-  static Pool instance;
-  return instance;
+  // Never destroyed: an object freed at exit after it (a cached target) still returns
+  // its buffers here, and what is kept stays reachable, not leaked.
+  static Pool* const instance = new Pool;
+  return *instance;
 }
 
 } // namespace
