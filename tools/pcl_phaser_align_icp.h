@@ -250,25 +250,22 @@ void refine(const typename pcl::PointCloud<PointT>::Ptr& full_source,
   tt.tic();
   const auto source = downsample<PointT>(full_source, settings.source_voxel_size);
   const auto target = downsample<PointT>(full_target, settings.voxel_size);
-  if (settings.point_to_point) {
-    pcl::IterativeClosestPoint<PointT, PointT, double> icp;
-    icp.setInputSource(source);
-    icp.setInputTarget(target);
-    run.source_points = source->size();
-    run.target_points = target->size();
-    runIcp(icp, guess, settings, s, run);
-  } else {
-    using NormalT = std::conditional_t<pcl::traits::has_intensity_v<PointT>,
-                                       pcl::PointXYZINormal, pcl::PointNormal>;
-    const auto src = withZeroNormals<NormalT>(*source);
-    const auto tgt =
-        withNormals<NormalT>(*target, settings.normal_neighbors, settings.threads);
-    pcl::IterativeClosestPointWithNormals<NormalT, NormalT, double> icp;
+  const auto on = [&](auto& icp, const auto& src, const auto& tgt) {
     icp.setInputSource(src);
     icp.setInputTarget(tgt);
     run.source_points = src->size();
     run.target_points = tgt->size();
     runIcp(icp, guess, settings, s, run);
+  };
+  if (settings.point_to_point) {
+    pcl::IterativeClosestPoint<PointT, PointT, double> icp;
+    on(icp, source, target);
+  } else {
+    using NormalT = std::conditional_t<pcl::traits::has_intensity_v<PointT>,
+                                       pcl::PointXYZINormal, pcl::PointNormal>;
+    pcl::IterativeClosestPointWithNormals<NormalT, NormalT, double> icp;
+    on(icp, withZeroNormals<NormalT>(*source),
+       withNormals<NormalT>(*target, settings.normal_neighbors, settings.threads));
   }
   s.time_ms = tt.toc();
   s.ran = true;
