@@ -2,122 +2,88 @@
 // Copyright (c) 2026, the pcl_phaser developers.
 //
 /** \file pcl_phaser_align_screenshot.cpp
- * \brief PNG rendering for `pcl_phaser_align --screenshot` (see the header). Kept in
- * its own translation unit so that only it sees the VTK/visualization headers.
+ * \brief The loader of the screenshot module (overlay_screenshot.cpp): the tool itself
+ * does not link PCL's visualization, VTK or X11, whose 47 libraries cost every run a
+ * tenth of a second of dynamic linking (122 libraries against 75 without them); the
+ * module is opened only when --screenshot is given.
  */
 #include "pcl_phaser_align_screenshot.h"
 
-#ifdef PCL_PHASER_ALIGN_HAVE_VISUALIZATION
-#include <pcl/common/common.h>
-#include <pcl/visualization/pcl_visualizer.h>
-
-#include <vtkRenderWindow.h>
-#endif
-#ifdef PCL_PHASER_ALIGN_HAVE_X11
-#include <X11/Xlib.h>
-#endif
-
-#include <algorithm>
-#include <chrono>
-#include <cstdlib>
-#include <filesystem>
-#include <system_error>
-#include <thread>
+#include <dlfcn.h>
 
 namespace pcl {
 namespace phaser {
 
-#ifdef PCL_PHASER_ALIGN_HAVE_X11
 namespace {
-/** \brief An X connection opened by the first check and held until the process ends.
- * An X server started without -noreset (xvfb-run's) resets whenever its last client
- * leaves and refuses connections meanwhile, which VTK answers with abort(): holding
- * one connection keeps the server up from the check to the rendering. A refused
- * connection is retried for up to 2 s, in case the server is resetting right now. */
-Display* heldConnection()
+
+using CheckFunction = bool (*)(std::string&);
+using SaveFunction = bool (*)(const pcl::PointCloud<pcl::PointXYZRGB>::ConstPtr&,
+                              const std::string&, int, int, std::string&);
+
+/** \brief The module's entry points, opened once (the module stays loaded: VTK must not
+ * be unloaded while the process runs); both null, with \a reason, when it cannot be. */
+struct ScreenshotModule {
+  CheckFunction check = nullptr;
+  SaveFunction save = nullptr;
+  std::string reason;
+};
+
+const ScreenshotModule& screenshotModule()
 {
-  static Display* connection = nullptr;
-  for (int attempt = 0; !connection && attempt < 20; ++attempt) {
-    if (attempt)
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    connection = XOpenDisplay(nullptr);
-  }
-  return (connection);
-}
-} // namespace
+  static const ScreenshotModule module = [] {
+    ScreenshotModule m;
+#ifndef PCL_PHASER_SCREENSHOT_MODULE
+    m.reason =
+        "this pcl_phaser_align was built without pcl_visualization (PCL's "
+        "visualization component was not found), so it cannot render screenshots";
+#else
+    // Found like the tool's libraries: its RUNPATH, the build tree or ../lib.
+    void* handle = dlopen(PCL_PHASER_SCREENSHOT_MODULE, RTLD_NOW | RTLD_LOCAL);
+    if (!handle) {
+      const char* why = dlerror();
+      m.reason = std::string("cannot load the screenshot module ") +
+                 PCL_PHASER_SCREENSHOT_MODULE + ": " + (why ? why : "unknown error");
+      return m;
+    }
+    m.check = reinterpret_cast<CheckFunction>(
+        dlsym(handle, "pcl_phaser_can_save_screenshot"));
+    m.save = reinterpret_cast<SaveFunction>(
+        dlsym(handle, "pcl_phaser_save_overlay_screenshot"));
+    if (!m.check || !m.save) {
+      m.check = nullptr;
+      m.save = nullptr;
+      m.reason = std::string("the screenshot module ") + PCL_PHASER_SCREENSHOT_MODULE +
+                 " lacks its entry points (a module of another version?)";
+    }
 #endif
+    return m;
+  }();
+  return module;
+}
+
+} // namespace
 
 bool canSaveScreenshot(std::string& reason)
 {
-#ifndef PCL_PHASER_ALIGN_HAVE_VISUALIZATION
-  reason = "this pcl_phaser_align was built without pcl_visualization (PCL's "
-           "visualization component was not found), so it cannot render screenshots";
-  return (false);
-#else
-  const char* display = std::getenv("DISPLAY");
-  if (!display || !*display) {
-    reason = "no X display: DISPLAY is not set. Rendering needs an X server; run "
-             "headless as: xvfb-run -a -s \"-screen 0 1280x1024x24\" pcl_phaser_align "
-             "ARGS";
+  const ScreenshotModule& module = screenshotModule();
+  if (!module.check) {
+    reason = module.reason;
     return (false);
   }
-#ifdef PCL_PHASER_ALIGN_HAVE_X11
-  // VTK aborts the process when the X server does not answer: ask first.
-  if (!heldConnection()) {
-    reason = std::string("cannot connect to the X display '") + display +
-             "'; run headless under xvfb-run -a -s \"-screen 0 1280x1024x24\"";
-    return (false);
-  }
-#endif
-  return (true);
-#endif
+  return (module.check(reason));
 }
 
-#ifndef PCL_PHASER_ALIGN_HAVE_VISUALIZATION
-bool saveOverlayScreenshot(const pcl::PointCloud<pcl::PointXYZRGB>::ConstPtr&,
-                           const std::string&, int, int, std::string& error)
-{
-  return (canSaveScreenshot(error));
-}
-#else
 bool saveOverlayScreenshot(const pcl::PointCloud<pcl::PointXYZRGB>::ConstPtr& cloud,
                            const std::string& path, int width, int height,
                            std::string& error)
 {
-  if (!canSaveScreenshot(error))
-    return (false);
-  if (!cloud || cloud->empty()) {
-    error = "nothing to render (empty overlay)";
-    return (false);
-  }
-  // Keep the default interactor: without one, saveScreenshot() crashes in PCL 1.13.
-  pcl::visualization::PCLVisualizer viz("pcl_phaser_align");
-  viz.getRenderWindow()->SetOffScreenRendering(1);
-  viz.setSize(width, height);
-  viz.setBackgroundColor(1.0, 1.0, 1.0);
-  pcl::visualization::PointCloudColorHandlerRGBField<pcl::PointXYZRGB> rgb(cloud);
-  viz.addPointCloud<pcl::PointXYZRGB>(cloud, rgb, "overlay");
-  viz.setPointCloudRenderingProperties(pcl::visualization::PCL_VISUALIZER_POINT_SIZE, 2,
-                                       "overlay");
-  // Top-down: look down -z at the center of the bounding box, y up; resetCamera()
-  // keeps that direction and moves the camera back until everything is in view.
-  pcl::PointXYZRGB lo, hi;
-  pcl::getMinMax3D(*cloud, lo, hi);
-  const double cx = 0.5 * (lo.x + hi.x), cy = 0.5 * (lo.y + hi.y);
-  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-3f});
-  viz.setCameraPosition(cx, cy, hi.z + 2.0 * extent, cx, cy, lo.z, 0.0, 1.0, 0.0);
-  viz.resetCamera();
-  viz.spinOnce(1);
-  std::error_code ec;
-  std::filesystem::remove(path, ec);
-  viz.saveScreenshot(path);
-  if (std::filesystem::file_size(path, ec) == 0 || ec) {
-    error = "the renderer wrote no image to " + path;
+  const ScreenshotModule& module = screenshotModule();
+  if (!module.save) {
+    error = module.reason;
     return (false);
   }
-  return (true);
+  return (module.save(cloud, path, width, height, error));
 }
-#endif
 
 } // namespace phaser
 } // namespace pcl

@@ -4,8 +4,9 @@
 /** \file pcl_phaser_align_screenshot.h
  * \brief Headless PNG rendering of the `pcl_phaser_align` overlay with
  * pcl::visualization::PCLVisualizer (off-screen render window; needs an X server,
- * e.g. Xvfb). Built as a stub that always refuses when pcl_visualization is absent
- * (PCL_PHASER_ALIGN_HAVE_VISUALIZATION undefined).
+ * e.g. Xvfb), in a module the tool opens on first use (pcl_phaser_align_screenshot.cpp);
+ * both functions refuse with the reason when PCL's visualization was not found at build
+ * time or the module cannot be loaded.
  */
 #pragma once
 

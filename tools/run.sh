@@ -23,8 +23,10 @@ if [[ $job == test ]]; then packages+=(parallel slurm-wlm munge libceres-dev); f
 # The Python module (built when pybind11 is found) and its pytest suite (label python).
 if [[ $job == test ]]; then
   packages+=(python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
-             python3-distributed python3-open3d)
+             python3-distributed)
 fi
+# Open3D: the peer the benchmark's Python scripts (bench/*_open3d.py) compare against.
+if [[ $job == benchmark ]]; then packages+=(python3-open3d); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

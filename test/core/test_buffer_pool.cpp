@@ -40,6 +40,27 @@ TEST(BufferPool, ReleasedBufferIsReusedForItsSizeOnlyWithinAScope)
   bufferRelease(other_size, kLarge + 4096);
 }
 
+TEST(BufferPool, BuffersOfHugePageSizeStartOnAHugePageAndSmallOnesStillWork)
+{
+  constexpr std::size_t kHugePage = std::size_t(2) << 20;
+  // Sizes that are not whole huge pages: the last page is rounded up, not overrun.
+  for (const std::size_t bytes : {kHugePage, kHugePage + 8, 3 * kHugePage + 4096}) {
+    auto* p = static_cast<unsigned char*>(bufferAcquire(bytes));
+    ASSERT_NE(p, nullptr);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(p) % kHugePage, 0u) << bytes;
+    std::memset(p, 7, bytes);
+    EXPECT_EQ(p[bytes - 1], 7);
+    bufferRelease(p, bytes);
+  }
+  for (const std::size_t bytes : {std::size_t(0), std::size_t(24), kHugePage - 8}) {
+    auto* p = static_cast<unsigned char*>(bufferAcquire(bytes));
+    ASSERT_NE(p, nullptr);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(p) % 16, 0u) << bytes;
+    std::memset(p, 7, bytes);
+    bufferRelease(p, bytes);
+  }
+}
+
 TEST(BufferPool, AnInnerScopeEndingKeepsTheOuterScopesBuffers)
 {
   const BufferPoolScope outer;

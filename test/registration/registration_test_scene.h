@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 
 namespace registration_test {
 
@@ -128,6 +129,12 @@ bool alignOnce(Registration& phaser, const CloudPtr& source, const CloudPtr& tar
   typename Registration::PointCloudSource out;
   phaser.align(out);
   return phaser.hasConverged();
+}
+
+/** Whether \a text contains \a part (the messages tests' check). */
+inline bool has(const std::string& text, const std::string& part)
+{
+  return text.find(part) != std::string::npos;
 }
 
 } // namespace registration_test

@@ -39,11 +39,6 @@ CloudXYZ::Ptr copies(const pcl::PointXYZ& p, std::size_t n)
   return c;
 }
 
-bool has(const std::string& text, const std::string& part)
-{
-  return text.find(part) != std::string::npos;
-}
-
 } // namespace
 
 TEST(InputMessages, CoincidentPointsAreRefusedAtTheEntryNamingTheCloud)

@@ -21,11 +21,6 @@ using pcl::phaser::PhaserParameters;
 
 namespace {
 
-bool has(const std::string& text, const std::string& part)
-{
-  return text.find(part) != std::string::npos;
-}
-
 using Phaser = pcl::PhaserRegistration<pcl::PointXYZ, pcl::PointXYZ>;
 
 /** \brief \a p with field \a r set to \a value (rounded for int fields); a region's

@@ -6,8 +6,10 @@
 
 #include <fftw3.h>
 
+#include <cstdlib>
 #include <mutex>
 #include <new>
+#include <sys/mman.h>
 #include <utility>
 #include <vector>
 
@@ -25,6 +27,37 @@ constexpr std::size_t kMaxKeptBytes = std::size_t(256) << 20;
  *  fault it in again: 1.7k -> 9-18k minor faults a revisit). */
 constexpr std::size_t kIdleKeptBytes = std::size_t(128) << 20;
 
+/** Buffers of at least this many bytes are whole transparent huge pages: a process's
+ *  first align touches ~100 MB of volumes and spectra, 4 KB a fault otherwise. */
+constexpr std::size_t kHugePageBytes = std::size_t(2) << 20;
+
+/** \a bytes rounded up to whole huge pages. */
+std::size_t hugePageRounded(std::size_t bytes)
+{
+  return (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
+}
+
+/** New memory of \a bytes, SIMD-aligned for FFTW; from kHugePageBytes on, huge-page
+ *  aligned and advised to be backed by huge pages (where the kernel allows it). */
+void* allocate(std::size_t bytes)
+{
+  if (bytes < kHugePageBytes)
+    return fftw_malloc(bytes ? bytes : 1);
+  void* buffer = std::aligned_alloc(kHugePageBytes, hugePageRounded(bytes));
+  if (buffer)
+    madvise(buffer, hugePageRounded(bytes), MADV_HUGEPAGE); // advice: failure is fine
+  return buffer;
+}
+
+/** Frees what allocate(\a bytes) returned. */
+void deallocate(void* buffer, std::size_t bytes) noexcept
+{
+  if (bytes < kHugePageBytes)
+    fftw_free(buffer);
+  else
+    std::free(buffer);
+}
+
 struct Pool {
   std::mutex mutex;
   int scopes = 0;
@@ -37,7 +70,7 @@ struct Pool {
   {
     std::size_t k = 0;
     for (; k < kept.size() && kept_bytes > budget; ++k) {
-      fftw_free(kept[k].first);
+      deallocate(kept[k].first, kept[k].second);
       kept_bytes -= kept[k].second;
     }
     kept.erase(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(k));
@@ -82,7 +115,7 @@ void* bufferAcquire(std::size_t bytes)
         return buffer;
       }
   }
-  void* buffer = fftw_malloc(bytes ? bytes : 1);
+  void* buffer = allocate(bytes);
   if (!buffer)
     throw std::bad_alloc();
   return buffer;
@@ -105,7 +138,7 @@ void bufferRelease(void* buffer, std::size_t bytes) noexcept
       }
     }
   }
-  fftw_free(buffer);
+  deallocate(buffer, bytes);
 }
 
 } // namespace detail
