@@ -2,8 +2,8 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  */
-#include "support/error.h"
 #include "index/point_index.h"
+#include "support/error.h"
 
 #include <algorithm>
 #include <array>
@@ -220,6 +220,53 @@ PointIndex::PointIndex(const Eigen::Matrix3Xd& points, double radius,
           slots_[insert(offsetKey(groups.keys[g], dx, dy, dz))].occupied |=
               neighborBit(-dx, -dy, -dz);
   }
+  buildDirectory();
+}
+
+void PointIndex::buildDirectory()
+{
+  std::vector<Cell> cells;
+  cells.reserve(used_);
+  Eigen::Array3i low = Eigen::Array3i::Constant(std::numeric_limits<int>::max());
+  Eigen::Array3i high = Eigen::Array3i::Constant(std::numeric_limits<int>::min());
+  for (const Cell& cell : slots_)
+    if (cell.key != kEmptyKey) {
+      cells.push_back(cell);
+      low = low.min(keyAxes(cell.key));
+      high = high.max(keyAxes(cell.key));
+    }
+  if (cells.empty())
+    return;
+  const Eigen::Array3i dims = high - low + 1;
+  if (static_cast<double>(dims.cast<double>().prod()) > kMaxDirectoryCells)
+    return; // too sparse a box: the hash table serves
+  // Keys order x, then y, then z, like the directory: cells next along z sit together.
+  std::sort(cells.begin(), cells.end(),
+            [](const Cell& a, const Cell& b) { return a.key < b.key; });
+  directory_.assign(static_cast<std::size_t>(dims.prod()), -1);
+  directory_low_ = low;
+  directory_dims_ = dims;
+  for (std::size_t c = 0; c < cells.size(); ++c)
+    directory_[directoryIndex(keyAxes(cells[c].key))] = static_cast<std::int32_t>(c);
+  cells_ = std::move(cells);
+  std::vector<Cell>().swap(slots_);
+}
+
+Eigen::Array3i PointIndex::keyAxes(std::int64_t key)
+{
+  constexpr std::int64_t kMask = (std::int64_t(1) << 21) - 1;
+  return {static_cast<int>(key >> 42), static_cast<int>((key >> 21) & kMask),
+          static_cast<int>(key & kMask)};
+}
+
+std::size_t PointIndex::directoryIndex(const Eigen::Array3i& axes) const
+{
+  const Eigen::Array3i c = axes - directory_low_;
+  return (static_cast<std::size_t>(c.x()) *
+              static_cast<std::size_t>(directory_dims_.y()) +
+          static_cast<std::size_t>(c.y())) *
+             static_cast<std::size_t>(directory_dims_.z()) +
+         static_cast<std::size_t>(c.z());
 }
 
 std::size_t PointIndex::insert(std::int64_t key)
@@ -251,6 +298,14 @@ std::size_t PointIndex::insert(std::int64_t key)
 
 const PointIndex::Cell* PointIndex::find(std::int64_t key) const
 {
+  if (!directory_.empty()) {
+    const Eigen::Array3i axes = keyAxes(key);
+    if ((axes < directory_low_).any() ||
+        (axes >= directory_low_ + directory_dims_).any())
+      return nullptr;
+    const std::int32_t c = directory_[directoryIndex(axes)];
+    return c < 0 ? nullptr : &cells_[static_cast<std::size_t>(c)];
+  }
   std::size_t i = slotOf(key);
   while (slots_[i].key != key) {
     if (slots_[i].key == kEmptyKey)

@@ -78,6 +78,17 @@ private:
     Eigen::Index first = 0, last = 0;
     std::uint32_t occupied = 0;
   };
+  /** Most cells of the directory's box (16 MB of indices): a cloud's cells within it
+   *  are looked up by position, beyond it by hash. */
+  static constexpr double kMaxDirectoryCells = 4.0 * (1 << 20);
+  /** Moves the table's cells into cells_, in key order, with directory_ their index at
+   *  every position of their bounding box, when that box is at most
+   *  kMaxDirectoryCells; else keeps the hash table. */
+  void buildDirectory();
+  /** The three biased axis indices of \a key (x first). */
+  static Eigen::Array3i keyAxes(std::int64_t key);
+  /** Position of the axis indices \a axes (inside the box) in directory_. */
+  std::size_t directoryIndex(const Eigen::Array3i& axes) const;
   /** First slot of \a key's probe sequence. */
   std::size_t slotOf(std::int64_t key) const;
   /** The cell of \a key, or nullptr when the table has none. */
@@ -99,8 +110,16 @@ private:
   Rows normals_;                 ///< empty, or one per point
   std::vector<char> has_normal_; ///< per point: its normal is not zero
   std::vector<Cell> slots_;      ///< a power of two of them, at most a quarter used
-  std::size_t used_ = 0;         ///< slots holding a cell
-  int slot_shift_ = 60;          ///< 64 - log2(slots_.size())
+  /** The table's cells by key, and per position of their bounding box (low corner,
+   *  dims) the index of its cell or -1: a look-up reads nearby memory, where the hash
+   *  table's slots scatter (the probes were half of nearest()'s time). Empty: the hash
+   *  table serves. */
+  std::vector<Cell> cells_;
+  std::vector<std::int32_t> directory_;
+  Eigen::Array3i directory_low_ = Eigen::Array3i::Zero();
+  Eigen::Array3i directory_dims_ = Eigen::Array3i::Zero();
+  std::size_t used_ = 0; ///< slots holding a cell
+  int slot_shift_ = 60;  ///< 64 - log2(slots_.size())
 };
 
 } // namespace pcl::phaser
