@@ -12,6 +12,31 @@
 
 using namespace pose_graph_test;
 
+namespace {
+
+/** pcl_phaser_batch on the 30 shared handheld scans (listed into \a folder/scans.txt)
+ *  with the poses file \a poses and \a options, its records in \a folder/loops.jsonl
+ *  and its log in \a folder/batch.log; true when it exited 0 (else a failure is
+ *  recorded with the command). */
+bool runHandheldBatch(const std::string& folder, const std::string& poses,
+                      const std::string& options)
+{
+  {
+    std::ofstream scans(folder + "/scans.txt");
+    for (int i = 0; i < 30; ++i)
+      scans << pcl::phaser::test::dataPath("lidar/balm_handheld") << "/full" << 6 * i
+            << ".pcd\n";
+  }
+  const std::string run = std::string(PCL_PHASER_BATCH_BIN) + " --scans " + folder +
+                          "/scans.txt --poses " + poses + " " + options + " --out " +
+                          folder + "/loops.jsonl 2> " + folder + "/batch.log";
+  const int code = exitCode(std::system(run.c_str()));
+  EXPECT_EQ(code, 0) << run;
+  return code == 0;
+}
+
+} // namespace
+
 // End to end on the shared handheld sequence (30 scans, 74 m walked): its poses made to
 // drift 1.5 deg of heading and 5 % of scale a step, loop-closure candidates within 8 m
 // of the drifted poses, the batch with --odometry, pcl_phaser_optimize: the trajectory
@@ -25,22 +50,10 @@ TEST(LoopClosures, DriftedHandheldTrajectoryIsCorrected)
   ASSERT_EQ(batch::readPoses(folder_in + "/poses_T_world_lidar.txt", truth), "");
   ASSERT_EQ(truth.size(), 30u);
   const std::string folder = freshFolder();
-  {
-    std::ofstream scans(folder + "/scans.txt"), poses(folder + "/drifted.txt");
-    poses.precision(17);
-    for (std::size_t i = 0; i < truth.size(); ++i)
-      scans << folder_in << "/full" << 6 * i << ".pcd\n";
-    for (const Eigen::Matrix4d& T : drifted(truth, 1.5, 1.05)) {
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 4; ++c)
-          poses << T(r, c) << (r == 2 && c == 3 ? "\n" : " ");
-    }
-  }
-  const std::string run = std::string(PCL_PHASER_BATCH_BIN) + " --scans " + folder +
-                          "/scans.txt --poses " + folder + "/drifted.txt --radius 8 " +
-                          "--min-gap 8 --out " + folder + "/loops.jsonl --g2o " +
-                          folder + "/loops.g2o --odometry 2> " + folder + "/batch.log";
-  ASSERT_EQ(std::system(run.c_str()), 0) << run;
+  writePoses(folder + "/drifted.txt", drifted(truth, 1.5, 1.05));
+  ASSERT_TRUE(runHandheldBatch(folder, folder + "/drifted.txt",
+                               "--radius 8 --min-gap 8 --g2o " + folder +
+                                   "/loops.g2o --odometry"));
   const std::string png =
       onPath("gnuplot") ? " --png " + folder + "/trajectory.png" : "";
   const std::string optimize = std::string(PCL_PHASER_OPTIMIZE_BIN) + " " + folder +
@@ -78,16 +91,9 @@ TEST(LoopClosures, DriftOptionShowsTheHandheldCorrection)
   const std::string folder_in = pcl::phaser::test::dataPath("lidar/balm_handheld");
   const std::string folder = freshFolder(),
                     poses = folder_in + "/poses_T_world_lidar.txt";
-  {
-    std::ofstream scans(folder + "/scans.txt");
-    for (int i = 0; i < 30; ++i)
-      scans << folder_in << "/full" << 6 * i << ".pcd\n";
-  }
-  const std::string run = std::string(PCL_PHASER_BATCH_BIN) + " --scans " + folder +
-                          "/scans.txt --poses " + poses + " --radius 8 --min-gap 8 " +
-                          "--out " + folder + "/loops.jsonl --g2o " + folder +
-                          "/loops.g2o --odometry 2> " + folder + "/batch.log";
-  ASSERT_EQ(exitCode(std::system(run.c_str())), 0) << run;
+  ASSERT_TRUE(runHandheldBatch(folder, poses,
+                               "--radius 8 --min-gap 8 --g2o " + folder +
+                                   "/loops.g2o --odometry"));
   const std::string png =
       onPath("gnuplot") ? " --png " + folder + "/trajectory.png" : "";
   const std::string optimize = std::string(PCL_PHASER_OPTIMIZE_BIN) + " " + folder +
@@ -115,16 +121,8 @@ TEST(LoopClosures, TrianglesCloseWithinTheirCovariances)
   PCL_PHASER_REQUIRE_DATA("lidar/balm_handheld/poses_T_world_lidar.txt");
   const std::string folder_in = pcl::phaser::test::dataPath("lidar/balm_handheld");
   const std::string folder = freshFolder();
-  {
-    std::ofstream scans(folder + "/scans.txt");
-    for (int i = 0; i < 30; ++i)
-      scans << folder_in << "/full" << 6 * i << ".pcd\n";
-  }
-  const std::string run = std::string(PCL_PHASER_BATCH_BIN) + " --scans " + folder +
-                          "/scans.txt --poses " + folder_in +
-                          "/poses_T_world_lidar.txt --radius 12 --min-gap 4 --out " +
-                          folder + "/loops.jsonl 2> " + folder + "/batch.log";
-  ASSERT_EQ(std::system(run.c_str()), 0) << run;
+  ASSERT_TRUE(runHandheldBatch(folder, folder_in + "/poses_T_world_lidar.txt",
+                               "--radius 12 --min-gap 4"));
   std::vector<batch::Record> records;
   ASSERT_EQ(batch::readRecords(folder + "/loops.jsonl", records, false), "");
   const std::vector<batch::Closure> closures = batch::loopClosures(records);
