@@ -103,6 +103,7 @@ def test_bool_enum_and_flag_fields_come_from_the_table_and_are_checked():
     assert p.normalized_refinement is False
     assert p.projection_center == pcl_phaser.ProjectionCenter.SensorOrigin
     assert p.channels == pcl_phaser.CHANNEL_RANGE
+    assert (pcl_phaser.CHANNEL_INTENSITY, pcl_phaser.CHANNEL_COLOR) == (2, 16)
     assert "normalized_refinement=False" in repr(p)
     assert pickle.loads(pickle.dumps(p)) == p
     for name in ("normalized_refinement", "projection_center", "channels"):
