@@ -10,11 +10,14 @@
 
 #include "protocol.h"
 
+#include <pcl_phaser/core/result.h>
+
 #include <Eigen/Core>
 
 #include <chrono>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,21 +40,6 @@ struct MethodSettings {
   double max_tilt_deg = 0.0; ///< pcl_phaser's PhaserParameters::max_tilt_deg
 };
 
-/** \brief pcl_phaser's verification of its final pose (NaN for other methods): what
- * hasConverged() decided on, and the best verification among the pass-1 hypotheses that
- * end far (over 10 deg or 2 m) from the final pose. */
-struct VerificationFigures {
-  double inliers = std::numeric_limits<double>::quiet_NaN(); ///< inlier_fraction
-  double free_space =
-      std::numeric_limits<double>::quiet_NaN(); ///< free_space_violation
-  double reverse_free_space = std::numeric_limits<double>::quiet_NaN();
-  double constraint = std::numeric_limits<double>::quiet_NaN();
-  /** PhaserResult::verification_rank, runner_up_rank and runner_up_error */
-  double rank = std::numeric_limits<double>::quiet_NaN();
-  double runner_up_rank = std::numeric_limits<double>::quiet_NaN();
-  double runner_up_error = std::numeric_limits<double>::quiet_NaN();
-};
-
 /** \brief One registration's outcome (T maps the source into the target frame). */
 struct MethodResult {
   Eigen::Matrix4d transformation = Eigen::Matrix4d::Identity();
@@ -60,9 +48,9 @@ struct MethodResult {
   /** the method's own quality figure: pcl_phaser's translation peak score, else
    * PCL's fitness score (mean squared distance, m^2) */
   double score = std::numeric_limits<double>::quiet_NaN();
-  /** pcl_phaser's normalized overlap of the aligned grids (NaN for other methods) */
-  double overlap = std::numeric_limits<double>::quiet_NaN();
-  VerificationFigures verification;
+  /** pcl_phaser's result without its lists (hypotheses, rotation samples): the CSV's
+   *  result columns (result_csv.h); none for other methods */
+  std::optional<PhaserResult> phaser;
   bool has_covariance = false;
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
 };

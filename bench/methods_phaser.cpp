@@ -13,17 +13,13 @@ namespace bench {
 
 namespace {
 
-VerificationFigures verificationOf(const PhaserDiagnostics& diagnostics)
+/** \brief \a r without its lists, which no CSV column holds. */
+PhaserResult withoutLists(PhaserResult r)
 {
-  VerificationFigures v;
-  v.inliers = diagnostics.verification.inlier_fraction;
-  v.free_space = diagnostics.verification.free_space_violation;
-  v.reverse_free_space = diagnostics.verification.reverse_free_space_violation;
-  v.constraint = diagnostics.verification.constraint;
-  v.rank = diagnostics.verification.rank;
-  v.runner_up_rank = diagnostics.runner_up_rank;
-  v.runner_up_error = diagnostics.runner_up_error;
-  return v;
+  r.diagnostics.hypotheses = {};
+  r.diagnostics.rotation_samples = {};
+  r.diagnostics.rotation_weights = {};
+  return r;
 }
 
 template <typename PointP>
@@ -56,10 +52,8 @@ MethodResult align(const typename pcl::PointCloud<PointP>::ConstPtr& source,
   result.ms = setup_ms + elapsedMs(start);
   result.transformation = phaser.getFinalTransformation().template cast<double>();
   result.converged = phaser.hasConverged();
-  const PhaserDiagnostics& diagnostics = phaser.getResult().diagnostics;
-  result.score = diagnostics.translation_score;
-  result.overlap = diagnostics.normalized_overlap;
-  result.verification = verificationOf(diagnostics);
+  result.phaser = withoutLists(phaser.getResult());
+  result.score = result.phaser->diagnostics.translation_score;
   if (result.converged) {
     result.covariance = phaser.getCovariance();
     result.has_covariance = true;

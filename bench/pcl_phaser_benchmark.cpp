@@ -300,8 +300,7 @@ private:
     trial.converged = r.converged;
     trial.success = trial.rre_deg < o_.rre_threshold && trial.rte_m < rte_threshold;
     trial.score = r.score;
-    trial.overlap = r.overlap;
-    trial.verification = r.verification;
+    trial.phaser = r.phaser;
     if (r.has_covariance) {
       const NeesFigures f = neesOf(r, truth);
       trial.nees = f.nees;

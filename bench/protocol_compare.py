@@ -7,7 +7,8 @@
 
 Success: the study's own (revisits: RRE < 5 deg and RTE < 0.6 m; random poses: the CSV's
 `success`). A false accept is a converged failure. With a baseline: per file the rows whose
-values differ (times excluded) and every trial whose success or claim changed.
+values differ (times and `stages_ms.*` excluded) and every trial whose success or claim
+changed.
 """
 import csv
 import statistics
@@ -45,6 +46,11 @@ def totals(folder):
         print(f"  {name} median RRE {rre:.4f} deg, RTE {rte:.4f} m")
 
 
+def timing(column):
+    """Whether a CSV column holds a time (it differs from run to run)."""
+    return column in ("ms", "time_ms") or column.startswith("stages_ms.")
+
+
 def changes(run, baseline):
     for name in FILES:
         old = {tuple(r.get(k, "") for k in KEY): r for r in rows(baseline, name)}
@@ -52,7 +58,7 @@ def changes(run, baseline):
         differing = 0
         for key, a in old.items():
             b = new.get(key)
-            if b is None or any(a[c] != b.get(c) for c in a if c not in ("ms", "time_ms")):
+            if b is None or any(a[c] != b.get(c) for c in a if not timing(c)):
                 differing += 1
             if b is not None and (success(a), a["converged"]) != (success(b), b["converged"]):
                 label = " ".join(v for v in key if v)

@@ -4,6 +4,7 @@
  */
 #include "protocol.h"
 #include "report.h"
+#include "result_csv.h"
 
 #include <algorithm>
 #include <cmath>
@@ -58,24 +59,21 @@ bool bySweepValue(const std::pair<std::string, double>& a,
 void writeCsv(std::ostream& out, const std::vector<Trial>& trials)
 {
   out << "set,sweep,value,pose,method,bandwidth,rre_deg,rte_m,time_ms,converged,"
-         "success,"
-         "score,nees,nees_rot,nees_trans,sigma_rot_deg,sigma_trans_m,overlap,"
-         "inliers,free_space,reverse_free_space,constraint,rank,runner_up_rank,"
-         "runner_up_error\n";
+         "success,fitness_score,nees,nees_rot,nees_trans,sigma_rot_deg,sigma_trans_m";
+  writeResultHeader(out);
+  out << "\n";
   char line[512];
   for (const Trial& t : trials) {
     std::snprintf(
         line, sizeof(line),
-        "%s,%s,%g,%d,%s,%d,%.6f,%.6f,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,"
-        "%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g\n",
+        "%s,%s,%g,%d,%s,%d,%.6f,%.6f,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g",
         t.set.c_str(), t.sweep.c_str(), t.value, t.pose, t.method.c_str(), t.bandwidth,
-        t.rre_deg, t.rte_m, t.ms, t.converged, t.success, t.score, t.nees, t.nees_rot,
-        t.nees_trans, t.sigma_rot_deg, t.sigma_trans_m, t.overlap,
-        t.verification.inliers, t.verification.free_space,
-        t.verification.reverse_free_space, t.verification.constraint,
-        t.verification.rank, t.verification.runner_up_rank,
-        t.verification.runner_up_error);
+        t.rre_deg, t.rte_m, t.ms, t.converged, t.success,
+        t.phaser ? std::nan("") : t.score, t.nees, t.nees_rot, t.nees_trans,
+        t.sigma_rot_deg, t.sigma_trans_m);
     out << line;
+    writeResultCells(out, t.phaser ? &*t.phaser : nullptr);
+    out << "\n";
   }
 }
 

@@ -28,16 +28,17 @@ struct Trial {
   bool converged = false;   ///< the method's own verdict
   bool success = false;     ///< RRE and RTE under the thresholds
   double score = 0.0;       ///< the method's quality figure (see MethodResult)
-  double overlap = 0.0;     ///< pcl_phaser's normalized overlap (NaN for others)
   double nees = -1.0;       ///< 6-D NEES under the method's covariance, -1 without one
   double nees_rot = -1.0;   ///< 3-D NEES of the rotation error under its own block
   double nees_trans = -1.0; ///< 3-D NEES of the translation error under its own block
-  double sigma_rot_deg = 0.0;       ///< sqrt(trace) of the covariance's rotation block
-  double sigma_trans_m = 0.0;       ///< sqrt(trace) of its translation block
-  VerificationFigures verification; ///< pcl_phaser's (NaN for others)
+  double sigma_rot_deg = 0.0; ///< sqrt(trace) of the covariance's rotation block
+  double sigma_trans_m = 0.0; ///< sqrt(trace) of its translation block
+  std::optional<PhaserResult> phaser; ///< pcl_phaser's result (MethodResult)
 };
 
-/** \brief Writes every trial as a CSV row (with a header). */
+/** \brief Writes every trial as a CSV row (with a header): the trial, `fitness_score`
+ *  (PCL's getFitnessScore; empty for pcl_phaser), the NEES, then pcl_phaser's result
+ *  fields (result_csv.h). */
 void writeCsv(std::ostream& out, const std::vector<Trial>& trials);
 
 /** \brief Markdown table grouped by (sweep, value, method) over all sets, or by (set,

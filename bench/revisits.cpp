@@ -14,6 +14,7 @@
 #include "methods.h"
 #include "protocol.h"
 #include "report.h"
+#include "result_csv.h"
 #include "revisits.h"
 #include "revisits_calibration.h"
 
@@ -157,17 +158,16 @@ bool loadPairs(const RevisitOptions& o, const std::string& pairs_file,
 void writeCsvRow(std::ostream& out, const RevisitTrial& t)
 {
   char line[512];
-  const VerificationFigures& v = t.verification;
-  std::snprintf(
-      line, sizeof(line),
-      "%s,%s,%s,%g,%g,%g,%.6f,%.6f,%d,%.3f,%.6g,%.6g,%.4g,%.4g,%.4g,%.4g,%.4g,"
-      "%.4g,%.4g,%.4g,%.4g,%.4g,%.4g,%.4g\n",
-      t.method.c_str(), t.pair.source.c_str(), t.pair.target.c_str(), t.pair.dist,
-      t.pair.rel_rot, t.pair.overlap, t.rre, t.rte, t.converged ? 1 : 0, t.ms, t.score,
-      t.overlap_est, v.inliers, v.free_space, v.reverse_free_space, v.constraint,
-      v.rank, v.runner_up_rank, v.runner_up_error, t.nees.nees, t.nees.nees_rot,
-      t.nees.nees_trans, t.nees.sigma_rot_deg, t.nees.sigma_trans_m);
-  out << line << std::flush; // a long run can be read while it goes
+  std::snprintf(line, sizeof(line),
+                "%s,%s,%s,%g,%g,%g,%.6f,%.6f,%d,%.3f,%.6g,%.4g,%.4g,%.4g,%.4g,%.4g",
+                t.method.c_str(), t.pair.source.c_str(), t.pair.target.c_str(),
+                t.pair.dist, t.pair.rel_rot, t.pair.overlap, t.rre, t.rte,
+                t.converged ? 1 : 0, t.ms, t.phaser ? std::nan("") : t.score,
+                t.nees.nees, t.nees.nees_rot, t.nees.nees_trans, t.nees.sigma_rot_deg,
+                t.nees.sigma_trans_m);
+  out << line;
+  writeResultCells(out, t.phaser ? &*t.phaser : nullptr);
+  out << "\n" << std::flush; // a long run can be read while it goes
 }
 
 /** The sector of \a scan that a sensor with a \a fraction x 360 deg horizontal field of
@@ -222,8 +222,7 @@ std::vector<RevisitTrial> runTrials(const RevisitOptions& o, const std::string& 
       t.rte = rteM(r.transformation, pair.truth);
       t.ms = r.ms;
       t.score = r.score;
-      t.overlap_est = r.overlap;
-      t.verification = r.verification;
+      t.phaser = r.phaser;
       t.converged = r.converged;
       t.estimate = r.transformation;
       t.nees = neesOf(r, pair.truth);
@@ -422,10 +421,10 @@ std::unique_ptr<std::ofstream> openCsv(const std::string& path)
   if (path.empty())
     return nullptr;
   auto csv = std::make_unique<std::ofstream>(path);
-  *csv << "method,source,target,dist,rel_rot,overlap,rre,rte,converged,ms,score,"
-          "overlap_est,inliers,free_space,reverse_free_space,constraint,rank,"
-          "runner_up_rank,runner_up_error,nees,nees_rot,nees_trans,sigma_rot_deg,"
-          "sigma_trans_m\n";
+  *csv << "method,source,target,dist,rel_rot,overlap,rre,rte,converged,ms,"
+          "fitness_score,nees,nees_rot,nees_trans,sigma_rot_deg,sigma_trans_m";
+  writeResultHeader(*csv);
+  *csv << "\n";
   return csv;
 }
 

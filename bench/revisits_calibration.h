@@ -28,10 +28,10 @@ constexpr double kRteThresholdB = 0.6; ///< m, the benchmark's usual level
 struct RevisitTrial {
   std::string method;
   RevisitPair pair;
-  double rre = 0.0, rte = 0.0, ms = 0.0, score = 0.0, overlap_est = 0.0;
+  double rre = 0.0, rte = 0.0, ms = 0.0, score = 0.0;
   bool converged = false;
   Eigen::Matrix4d estimate = Eigen::Matrix4d::Identity(); ///< T_target_source
-  VerificationFigures verification; ///< pcl_phaser's (NaN for others)
+  std::optional<PhaserResult> phaser; ///< pcl_phaser's result (MethodResult)
   NeesFigures nees; ///< of a converged trial with a covariance (pcl_phaser's)
 
   bool successA() const { return rre < kRreThreshold && rte < kRteThresholdA; }

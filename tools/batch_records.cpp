@@ -2,6 +2,7 @@
 // Copyright (c) 2026, the pcl_phaser developers.
 //
 #include "batch_records.h"
+#include "engine_options.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -129,6 +130,39 @@ std::string readWhole(const std::string& path, bool& exists, std::string& error)
 }
 
 } // namespace
+
+std::string runFingerprint(const PhaserParameters& p, int shard, int shards)
+{
+  char text[160];
+  std::snprintf(text, sizeof(text),
+                "shard %d/%d, B %d, grid %d, voxel %.17g, passes %d, %s", shard, shards,
+                p.bandwidth, p.spatial_grid_size, p.voxel_size, p.passes,
+                centerName(p.projection_center));
+  std::string fingerprint = text;
+  // The priors, only when set (records written without them keep their fingerprint).
+  if (p.region) {
+    std::snprintf(text, sizeof(text), ", region %.17g,%.17g,%.17g,%.17g", p.region->x,
+                  p.region->y, p.region->z, p.region->radius);
+    fingerprint += text;
+  }
+  if (p.max_tilt_deg > 0.0) {
+    std::snprintf(text, sizeof(text), ", tilt %.17g", p.max_tilt_deg);
+    fingerprint += text;
+  }
+  // The fields above are the format of the first records, kept so that they resume;
+  // every other row of kParameterRanges that changes results follows, when it is not
+  // at its default.
+  static const std::set<std::string> head = {
+      "bandwidth",         "spatial_grid_size", "voxel_size", "passes",
+      "projection_center", "region_x",          "region_y",   "region_z",
+      "region_radius",     "max_tilt_deg"};
+  const PhaserParameters d;
+  for (const ParameterRange& r : kParameterRanges)
+    if (r.changes_results && !head.count(r.name) && r.value(p) != r.value(d))
+      fingerprint +=
+          ", " + std::string(r.name) + " " + parameterText(r, r.value(p), 17);
+  return fingerprint;
+}
 
 std::string pairKey(const std::string& source, const std::string& target)
 {

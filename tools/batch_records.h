@@ -36,6 +36,13 @@ Record alignedRecord(const Pair& pair, std::size_t pairs, const PhaserResult& re
 /** \brief The record of a pair that could not be aligned: status "failed" and why. */
 Record failedRecord(const Pair& pair, std::size_t pairs, const std::string& reason);
 
+/** \brief What makes records of one run comparable, the "run" of every record: shard
+ *  \a shard of \a shards and the settings of \a p that change results (not threads),
+ *  e.g. "shard 0/1, B 64, grid 128, voxel 0, passes 3, auto"; a setting beyond those
+ *  is added (", whitening 0.25") only when it is not at its default, so records of an
+ *  earlier version keep theirs. */
+std::string runFingerprint(const PhaserParameters& p, int shard, int shards);
+
 /** \brief The key that identifies a pair in records: source and target as given. */
 std::string pairKey(const std::string& source, const std::string& target);
 

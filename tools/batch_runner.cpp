@@ -19,7 +19,6 @@
 #include <map>
 #include <memory>
 #include <mutex>
-#include <set>
 #include <thread>
 #include <unistd.h>
 
@@ -53,40 +52,6 @@ int failWith(int code, const std::string& reason)
   return code;
 }
 
-/** \brief What makes records of one run comparable: the shard and the settings that
- *  change results (not threads or jobs). */
-std::string runFingerprint(const RunSettings& settings)
-{
-  const PhaserParameters& p = settings.params;
-  char text[160];
-  std::snprintf(text, sizeof(text),
-                "shard %d/%d, B %d, grid %d, voxel %.17g, passes %d, %s",
-                settings.shard, settings.shards, p.bandwidth, p.spatial_grid_size,
-                p.voxel_size, p.passes, centerName(p.projection_center));
-  std::string fingerprint = text;
-  // The priors, only when set (records written without them keep their fingerprint).
-  if (p.region) {
-    std::snprintf(text, sizeof(text), ", region %.17g,%.17g,%.17g,%.17g", p.region->x,
-                  p.region->y, p.region->z, p.region->radius);
-    fingerprint += text;
-  }
-  if (p.max_tilt_deg > 0.0) {
-    std::snprintf(text, sizeof(text), ", tilt %.17g", p.max_tilt_deg);
-    fingerprint += text;
-  }
-  // Every other row of kParameterRanges (an engine option) not at its default.
-  static const std::set<std::string> listed = {
-      "bandwidth", "spatial_grid_size", "voxel_size", "passes",        "num_threads",
-      "region_x",  "region_y",          "region_z",   "region_radius", "max_tilt_deg"};
-  const PhaserParameters d;
-  for (const ParameterRange& r : kParameterRanges)
-    if (!listed.count(r.name) && r.value(p) != r.value(d)) {
-      std::snprintf(text, sizeof(text), ", %s %.17g", r.name, r.value(p));
-      fingerprint += text;
-    }
-  return fingerprint;
-}
-
 /** \brief The pairs of the shard not yet in \a records; an error when a record is not
  *  a pair of this list, shard and settings (use another --out) or is there twice. */
 std::string pendingPairs(const PairList& list, const std::vector<std::size_t>& shard,
@@ -94,7 +59,8 @@ std::string pendingPairs(const PairList& list, const std::vector<std::size_t>& s
                          const RunSettings& settings, std::vector<std::size_t>& pending)
 {
   const std::string& out = settings.out;
-  const std::string fingerprint = runFingerprint(settings);
+  const std::string fingerprint =
+      runFingerprint(settings.params, settings.shard, settings.shards);
   for (const Record& r : records)
     if (r.value("run", std::string()) != fingerprint ||
         r.value("pairs", std::size_t{0}) != list.pairs.size())
@@ -135,7 +101,8 @@ struct Run {
       : list(pairs)
       , settings(run_settings)
       , params(run_settings.params)
-      , fingerprint(runFingerprint(run_settings))
+      , fingerprint(runFingerprint(run_settings.params, run_settings.shard,
+                                   run_settings.shards))
   {
   }
   const PairList& list;

@@ -5,9 +5,9 @@
 /** \file engine_options.h
  * \brief The engine settings of pcl_phaser_align and pcl_phaser_batch: one option per
  * row of pcl::phaser::kParameterRanges (`--<name with - for _>`, the documented ones
- * also under a short alias: -b, --grid, --threads, --max-tilt), plus --center and
- * --region X,Y,Z,R. Both tools parse, range-check and document them from this table,
- * and read their command lines with collectArguments().
+ * also under a short alias: -b, --grid, --threads, --center, --max-tilt), plus
+ * --region X,Y,Z,R. Both tools parse, check (range, names) and document them from this
+ * table, and read their command lines with collectArguments().
  */
 #pragma once
 
@@ -28,18 +28,21 @@
 namespace pcl {
 namespace phaser {
 
-/** \brief One engine option: a row of kParameterRanges, or --center / --region. */
+/** \brief One engine option: a row of kParameterRanges, or --region. */
 struct EngineOption {
   std::string flag;            ///< the long name, e.g. --bandwidth
   const char* alias;           ///< a short name, e.g. -b; null when none
   const char* value_name;      ///< the value in the help, e.g. B
-  const ParameterRange* range; ///< the row; null for --center and --region
+  const ParameterRange* range; ///< the row; null for --region
 };
 
 /** \brief The option of row \a r: its name with - for _, alias and help value. */
 inline EngineOption engineOptionOf(const ParameterRange& r)
 {
-  EngineOption o{"--" + std::string(r.name), nullptr, r.integer ? "N" : "X", &r};
+  // The help value of each ParameterType, in its order.
+  static const char* const value_names[] = {"N", "X", "BOOL", "NAME", "LIST"};
+  EngineOption o{"--" + std::string(r.name), nullptr,
+                 value_names[static_cast<int>(r.type)], &r};
   for (char& c : o.flag)
     c = c == '_' ? '-' : c;
   if (!std::strcmp(r.unit, "m"))
@@ -49,6 +52,7 @@ inline EngineOption engineOptionOf(const ParameterRange& r)
                                            {"spatial_grid_size", "--grid", "N"},
                                            {"passes", nullptr, "K"},
                                            {"num_threads", "--threads", "T"},
+                                           {"projection_center", "--center", "MODE"},
                                            {"max_tilt_deg", "--max-tilt", "DEG"}};
   for (const auto& a : aliases)
     if (!std::strcmp(a[0], r.name))
@@ -56,12 +60,11 @@ inline EngineOption engineOptionOf(const ParameterRange& r)
   return o;
 }
 
-/** \brief Every engine option: --center, --region, then kParameterRanges' rows. */
+/** \brief Every engine option: --region, then kParameterRanges' rows. */
 inline const std::vector<EngineOption>& engineOptions()
 {
   static const std::vector<EngineOption> options = [] {
-    std::vector<EngineOption> out = {{"--center", nullptr, "MODE", nullptr},
-                                     {"--region", nullptr, "X,Y,Z,R", nullptr}};
+    std::vector<EngineOption> out = {{"--region", nullptr, "X,Y,Z,R", nullptr}};
     for (const ParameterRange& r : kParameterRanges)
       out.push_back(engineOptionOf(r));
     return out;
@@ -82,9 +85,10 @@ inline int findEngineOption(const std::string& flag)
 /** \brief The name of a projection center, as --center takes it. */
 inline const char* centerName(ProjectionCenter center)
 {
-  return center == ProjectionCenter::SensorOrigin ? "sensor"
-         : center == ProjectionCenter::Centroid   ? "centroid"
-                                                  : "auto";
+  for (const ParameterName& n : kProjectionCenterNames)
+    if (n.value == static_cast<std::uint32_t>(center))
+      return n.name;
+  return "?";
 }
 
 /** \brief \a text as an integer in \a lo..\a hi into \a v; false when it is not. */
@@ -97,27 +101,17 @@ inline bool parseInteger(const std::string& text, long lo, long hi, long& v)
 }
 
 /** \brief Sets row \a r of \a p from \a text given as \a flag; empty, or the message
- *  naming the option, its range and meaning. */
+ *  naming the option, what it takes and its meaning. */
 inline std::string setFromText(const ParameterRange& r, const std::string& flag,
                                const std::string& text, PhaserParameters& p)
 {
-  char* end = nullptr;
-  long n = 0;
-  const double v = r.integer ? 0.0 : std::strtod(text.c_str(), &end);
-  if (r.integer ? parseInteger(text, long(r.min), long(r.max), n)
-                : !text.empty() && *end == '\0' && std::isfinite(v) && v >= r.min &&
-                      v <= r.max)
-    return r.set(p, r.integer ? double(n) : v), std::string();
-  char range[64];
-  std::snprintf(range, sizeof(range), "%g..%g (", r.min, r.max);
-  if (r.integer)
-    return "Invalid value '" + text + "' for " + flag + ": expected an integer in " +
-           range + r.meaning + ")";
-  const char* what = !std::strcmp(r.unit, "deg") ? "degrees"
-                     : !std::strcmp(r.unit, "m") ? "meters"
-                                                 : "a number";
-  return "Invalid " + flag + " '" + text + "': expected " + what + " in " + range +
-         r.meaning + ")";
+  double v = 0.0;
+  if (parseParameter(r, text, v))
+    return r.set(p, v), std::string();
+  const std::string expected = parameterDomain(r) + " (" + r.meaning + ")";
+  if (r.type == ParameterType::Integer)
+    return "Invalid value '" + text + "' for " + flag + ": expected " + expected;
+  return "Invalid " + flag + " '" + text + "': expected " + expected;
 }
 
 /** \brief --region X,Y,Z,R (meters, the target's frame) into \a p as the rows
@@ -149,22 +143,14 @@ inline std::string setEngineOption(const EngineOption& o, const std::string& fla
 {
   if (o.range)
     return setFromText(*o.range, flag, text, p);
-  if (o.flag == "--region") {
-    if (setRegion(text, p))
-      return {};
-    char max[32];
-    std::snprintf(max, sizeof(max), "%g", findParameterRange("region_radius")->max);
-    return "Invalid --region '" + text +
-           "': expected X,Y,Z,R in meters in the target's frame, coordinates within "
-           "1e6 m and 0 < R <= " +
-           max;
-  }
-  for (const ProjectionCenter c :
-       {ProjectionCenter::SensorOrigin, ProjectionCenter::Centroid,
-        ProjectionCenter::Automatic})
-    if (text == centerName(c))
-      return p.projection_center = c, std::string();
-  return "Invalid --center '" + text + "': expected sensor, centroid or auto";
+  if (setRegion(text, p))
+    return {};
+  char max[32];
+  std::snprintf(max, sizeof(max), "%g", findParameterRange("region_radius")->max);
+  return "Invalid --region '" + text +
+         "': expected X,Y,Z,R in meters in the target's frame, coordinates within "
+         "1e6 m and 0 < R <= " +
+         max;
 }
 
 /** \brief The engine options of one command line by their index in engineOptions():
@@ -239,15 +225,9 @@ inline std::string engineOptionsHelp(const PhaserParameters& d)
     std::string text;
     if (o.range) {
       const ParameterRange& r = *o.range;
-      std::snprintf(line, sizeof(line), "; %g..%g%s%s (default: %g)", r.min, r.max,
-                    *r.unit ? " " : "", r.unit, r.value(d));
-      text = r.meaning + std::string(line);
-    } else if (o.flag == "--center")
-      text = std::string("projection center: sensor (each cloud's origin: scans), "
-                         "centroid, or auto (sensor when they look like scans) "
-                         "(default: ") +
-             centerName(d.projection_center) + ")";
-    else
+      text = r.meaning + std::string("; ") + parameterValues(r) + (*r.unit ? " " : "") +
+             r.unit + " (default: " + parameterText(r, r.value(d)) + ")";
+    } else
       text =
           "position prior: the source's sensor within R m of (X, Y, Z), target frame "
           "(sets the region_* rows)";

@@ -53,6 +53,7 @@ struct Result {
   std::string error; ///< the message of the failure, for --json
   Stage global, icp;
   pcl::phaser::PhaserResult estimate;
+  pcl::phaser::PhaserParameters params; ///< the settings the registration ran with
   std::size_t source_points = 0, target_points = 0;
   pcl::PointCloud<pcl::PointXYZRGB>::Ptr overlay;
   /** \brief ICP's transform when it ran and converged, else PHASER's. */
@@ -127,6 +128,7 @@ void registerGlobally(pcl::PhaserRegistration<PointT, PointT>& phaser,
   res.global.converged = phaser.hasConverged();
   res.global.transform = phaser.getFinalTransformation().template cast<double>();
   res.estimate = phaser.getResult();
+  res.params = phaser.getParameters();
   print_info("[done, ");
   print_value("%g", res.global.time_ms);
   print_info(" ms : %s]\n", res.global.converged ? "converged" : "NOT converged");
@@ -256,6 +258,7 @@ std::string toJson(const Result& res, const Options& opt, int code, double total
     pcl::phaser::visitResultFields(res.estimate, JsonFields{o});
     o["source_points"] = res.source_points;
     o["target_points"] = res.target_points;
+    o["parameters"] = pcl::phaser::parametersJson(res.params);
     if (res.icp.ran) {
       o["icp"] = stageJson(res.icp);
       o["icp"]["method"] = opt.icp_point ? "point_to_point" : "point_to_plane";

@@ -147,8 +147,10 @@ inline std::string parameterTable()
       "| field | range | default | unit | meaning |\n|---|---|---|---|---|\n";
   char row[512];
   for (const pcl::phaser::ParameterRange& r : pcl::phaser::kParameterRanges) {
-    std::snprintf(row, sizeof(row), "| `%s` | %g..%g | %g | %s | %s |\n", r.name, r.min,
-                  r.max, r.value(defaults), *r.unit ? r.unit : "-", r.meaning);
+    std::snprintf(row, sizeof(row), "| `%s` | %s | %s | %s | %s |\n", r.name,
+                  pcl::phaser::parameterValues(r).c_str(),
+                  pcl::phaser::parameterText(r, r.value(defaults)).c_str(),
+                  *r.unit ? r.unit : "-", r.meaning);
     out += row;
   }
   return (out);

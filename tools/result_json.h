@@ -7,6 +7,7 @@
  */
 #pragma once
 
+#include <pcl_phaser/core/parameters.h>
 #include <pcl_phaser/core/result_fields.h>
 
 #include <Eigen/Core>
@@ -22,8 +23,8 @@ namespace phaser {
 using JsonObject = nlohmann::ordered_json;
 
 /** \brief A visitor of visitResultFields() that sets a member of \a object per field:
- *  numbers, booleans and strings as they are (dump() writes non-finite numbers as null),
- *  matrices as row-major nested arrays, groups as objects. */
+ *  numbers, booleans and strings as they are (dump() writes non-finite numbers as
+ * null), matrices as row-major nested arrays, groups as objects. */
 struct JsonFields {
   JsonObject& object;
   template <class T, class = std::enable_if_t<std::is_arithmetic_v<T>>>
@@ -48,6 +49,26 @@ struct JsonFields {
     group.visit(JsonFields{object[name] = JsonObject::object()});
   }
 };
+
+/** \brief Every row of kParameterRanges of \a p as a JSON object: numbers and
+ *  booleans as they are, an enum's and flags' values as the tools write them ("auto",
+ *  "all"). */
+inline JsonObject parametersJson(const PhaserParameters& p)
+{
+  JsonObject o = JsonObject::object();
+  for (const ParameterRange& r : kParameterRanges) {
+    const double v = r.value(p);
+    if (r.type == ParameterType::Integer)
+      o[r.name] = static_cast<long long>(v);
+    else if (r.type == ParameterType::Real)
+      o[r.name] = v;
+    else if (r.type == ParameterType::Boolean)
+      o[r.name] = v != 0.0;
+    else
+      o[r.name] = parameterText(r, v);
+  }
+  return o;
+}
 
 } // namespace phaser
 } // namespace pcl

@@ -4,6 +4,8 @@
  */
 #pragma once
 
+#include <pcl_phaser/core/parameters.h> // Channel
+
 #include <pcl/point_types.h> // has_field, has_intensity, has_color
 
 #include <cstdint>
@@ -19,14 +21,7 @@ struct ambient;
 /** \brief The point channels of pcl::PhaserRegistration. */
 namespace phaser {
 
-/** \brief The signal channels PhaserRegistration fuses, as bit flags. */
-enum Channel : std::uint32_t {
-  CHANNEL_RANGE = 1u << 0,        ///< |p| from xyz (always available)
-  CHANNEL_INTENSITY = 1u << 1,    ///< the `intensity` field
-  CHANNEL_REFLECTIVITY = 1u << 2, ///< the `reflectivity` field (Ouster)
-  CHANNEL_AMBIENT = 1u << 3,      ///< the `ambient` field (Ouster near-IR)
-  CHANNEL_COLOR = 1u << 4         ///< luminance of `rgb`/`rgba`
-};
+// The Channel flags (CHANNEL_RANGE, ...): pcl_phaser/core/parameters.h.
 
 /** \brief Which channels a point type carries; specialize it to show or hide fields:
  *  \code

@@ -11,11 +11,13 @@
 holds every setting (C++ names and defaults); ``align_many`` runs many pairs, serially
 or on a dask.distributed cluster. The GIL is released while an align runs.
 """
-from ._pcl_phaser import (CHANNEL_INTENSITY, CHANNEL_RANGE, PARAMETER_RANGES,
+from ._pcl_phaser import (CHANNEL_AMBIENT, CHANNEL_COLOR, CHANNEL_INTENSITY,
+                          CHANNEL_RANGE, CHANNEL_REFLECTIVITY, PARAMETER_RANGES,
                           Diagnostics, Hypothesis, Parameters, ProjectionCenter,
                           Result, StageTimes, Target, Verification, align, warm_up)
 from .many import align_many
 
 __all__ = ["align", "align_many", "warm_up", "Parameters", "ProjectionCenter",
            "Target", "Result", "Diagnostics", "Hypothesis", "StageTimes",
-           "Verification", "PARAMETER_RANGES", "CHANNEL_RANGE", "CHANNEL_INTENSITY"]
+           "Verification", "PARAMETER_RANGES", "CHANNEL_RANGE", "CHANNEL_INTENSITY",
+           "CHANNEL_REFLECTIVITY", "CHANNEL_AMBIENT", "CHANNEL_COLOR"]

@@ -95,3 +95,33 @@ def test_region_fields_make_the_position_prior_and_radius_zero_removes_it():
     assert "region_radius = 0 with a region" in pcl_phaser.align(cloud, cloud, params=p).error
     with pytest.raises(ValueError, match="region_radius = 0 with a region"):
         pcl_phaser.Parameters(region_x=5.0)
+
+
+def test_bool_enum_and_flag_fields_come_from_the_table_and_are_checked():
+    p = pcl_phaser.Parameters(normalized_refinement=False, projection_center="sensor_origin",
+                              channels=pcl_phaser.CHANNEL_RANGE)
+    assert p.normalized_refinement is False
+    assert p.projection_center == pcl_phaser.ProjectionCenter.SensorOrigin
+    assert p.channels == pcl_phaser.CHANNEL_RANGE
+    assert (pcl_phaser.CHANNEL_INTENSITY, pcl_phaser.CHANNEL_COLOR) == (2, 16)
+    assert "normalized_refinement=False" in repr(p)
+    assert pickle.loads(pickle.dumps(p)) == p
+    for name in ("normalized_refinement", "projection_center", "channels"):
+        assert name in pcl_phaser.Parameters.fields()
+        assert getattr(pcl_phaser.Parameters, name).__doc__
+    p.projection_center = pcl_phaser.ProjectionCenter.Centroid
+    assert p.projection_center == pcl_phaser.ProjectionCenter.Centroid
+    with pytest.raises(ValueError, match="'sensor', 'centroid', 'auto'"):
+        p.projection_center = "bogus"
+    with pytest.raises(TypeError, match="ProjectionCenter"):
+        p.projection_center = 1
+    with pytest.raises(TypeError, match="normalized_refinement takes a bool"):
+        p.normalized_refinement = "off"
+    with pytest.raises(ValueError, match="channels = -1 is outside its range"):
+        p.channels = -1
+    with pytest.raises(ValueError, match="outside its range"):
+        p.channels = 2**32
+    with pytest.raises(TypeError):
+        p.channels = True
+    assert p.projection_center == pcl_phaser.ProjectionCenter.Centroid  # kept
+    assert p.channels == pcl_phaser.CHANNEL_RANGE

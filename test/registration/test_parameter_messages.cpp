@@ -48,11 +48,14 @@ TEST(ParameterTable, DefaultsAndBoundsAreLegalAndBeyondIsRefusedByName)
     if (std::isfinite(r.max)) {
       EXPECT_EQ(pcl::phaser::validateParameters(with(r, r.max)), "");
     }
-    const double step = r.integer ? 1.0 : 0.01;
+    if (r.type != pcl::phaser::ParameterType::Integer &&
+        r.type != pcl::phaser::ParameterType::Real)
+      continue; // bool, enum, flags: below (TypedRowsReadAndWriteTheirNames)
+    const double step = r.type == pcl::phaser::ParameterType::Integer ? 1.0 : 0.01;
     std::vector<double> bad = {r.min - step};
     if (std::isfinite(r.max))
       bad.push_back(r.max + step);
-    if (!r.integer)
+    if (r.type == pcl::phaser::ParameterType::Real)
       bad.push_back(std::numeric_limits<double>::quiet_NaN());
     for (const double v : bad) {
       const std::string why = pcl::phaser::validateParameters(with(r, v));
@@ -151,4 +154,67 @@ TEST(ParameterMessages, EngineStillValidatesAtAlign)
       pcl::phaser::align(target, source, Eigen::Matrix4d::Identity(), p);
   EXPECT_TRUE(has(r.error, "orientation_bandwidth = 4 is outside its range 8..128"))
       << r.error;
+}
+
+TEST(ParameterTable, TypedRowsReadAndWriteTheirNames)
+{
+  using pcl::phaser::findParameterRange;
+  using pcl::phaser::parameterText;
+  using pcl::phaser::parseParameter;
+  // Every row's default, min and max read back from their text.
+  for (const pcl::phaser::ParameterRange& r : pcl::phaser::kParameterRanges) {
+    SCOPED_TRACE(r.name);
+    for (const double v : {r.value(PhaserParameters()), r.min, r.max}) {
+      double back = -7.0;
+      if (std::isfinite(v)) {
+        EXPECT_TRUE(parseParameter(r, parameterText(r, v, 17), back));
+        EXPECT_EQ(back, v);
+      }
+    }
+  }
+  const auto* refine = findParameterRange("normalized_refinement");
+  const auto* center = findParameterRange("projection_center");
+  const auto* channels = findParameterRange("channels");
+  ASSERT_TRUE(refine && center && channels);
+  EXPECT_EQ(refine->type, pcl::phaser::ParameterType::Boolean);
+  double v = 5.0;
+  for (const char* off : {"false", "off", "no", "0"})
+    EXPECT_TRUE(parseParameter(*refine, off, v) && v == 0.0) << off;
+  for (const char* on : {"true", "on", "yes", "1"})
+    EXPECT_TRUE(parseParameter(*refine, on, v) && v == 1.0) << on;
+  EXPECT_TRUE(parseParameter(*center, "centroid", v));
+  EXPECT_EQ(v, double(pcl::phaser::ProjectionCenter::Centroid));
+  EXPECT_FALSE(parseParameter(*center, "sensor_origin", v));
+  EXPECT_TRUE(parseParameter(*center, "sensor_origin", v, true)); // Python's spelling
+  EXPECT_EQ(parameterText(*center, v), "sensor");
+  EXPECT_TRUE(parseParameter(*channels, "range,intensity", v));
+  EXPECT_EQ(v, double(pcl::phaser::CHANNEL_RANGE | pcl::phaser::CHANNEL_INTENSITY));
+  EXPECT_EQ(parameterText(*channels, v), "range,intensity");
+  EXPECT_EQ(parameterText(*channels, channels->value(PhaserParameters())), "all");
+  v = 5.0;
+  for (const char* bad : {"maybe", "", "True", "2"})
+    EXPECT_FALSE(parseParameter(*refine, bad, v)) << bad;
+  for (const char* bad : {"bogus", "", "1", "Centroid"})
+    EXPECT_FALSE(parseParameter(*center, bad, v)) << bad;
+  for (const char* bad : {"range,bogus", "range,", "-1", "4294967296", "x1"})
+    EXPECT_FALSE(parseParameter(*channels, bad, v)) << bad;
+  for (const char* bad : {"1.5", "64x", "", "1e2"})
+    EXPECT_FALSE(parseParameter(*findParameterRange("bandwidth"), bad, v)) << bad;
+  EXPECT_EQ(v, 5.0); // unchanged by every refusal
+}
+
+TEST(ParameterMessages, AnEnumOutsideItsNamesIsRefused)
+{
+  PhaserParameters p;
+  p.projection_center = static_cast<pcl::phaser::ProjectionCenter>(7);
+  const std::string why = pcl::phaser::validateParameters(p);
+  EXPECT_TRUE(has(why, "projection_center = 7 is none of sensor, centroid, auto"))
+      << why;
+  Phaser phaser;
+  testing::internal::CaptureStderr();
+  phaser.setParameters(p);
+  const std::string log = testing::internal::GetCapturedStderr();
+  EXPECT_TRUE(has(log, "projection_center = 7 is none of")) << log;
+  EXPECT_EQ(phaser.getParameters().projection_center,
+            pcl::phaser::ProjectionCenter::Automatic);
 }

@@ -2,39 +2,51 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * The keys of visitResultFields() that pcl_phaser_align --json and the batch's records
- * both write, in order: pinned here, so that a rename is a decision of both tools.
+ * The keys of visitResultFields() that pcl_phaser_align --json, the batch's records and
+ * the benchmarks' CSV write, in order: collected from the code, and pinned by the table
+ * of doc/cli.md (test ResultKeys.AreTheDocumentedOnes), so that a new or renamed field
+ * is documented there.
  */
 #pragma once
 
-#include <array>
+#include <pcl_phaser/core/result_fields.h>
+
+#include <string>
+#include <vector>
 
 namespace pcl::phaser::test {
 
-/** \brief The shared result keys (after transformation and converged). */
-constexpr std::array<const char*, 18> kResultFieldKeys = {
-    "covariance",
-    "rotation_score",
-    "translation_score",
-    "normalized_overlap",
-    "inlier_fraction",
-    "verification_score",
-    "free_space_violation",
-    "reverse_free_space_violation",
-    "constraint",
-    "verification_rank",
-    "runner_up_rank",
-    "runner_up_error",
-    "verification_radius",
-    "verification_samples",
-    "verified",
-    "refusal",
-    "passes",
-    "stages_ms"};
+/** \brief A visitor of visitResultFields() that keeps the names it is given. */
+struct FieldNames {
+  std::vector<std::string>& names;
+  template <class T>
+  void operator()(const char* name, const T&)
+  {
+    names.emplace_back(name);
+  }
+};
+
+/** \brief The names of visitResultFields()' fields (after transformation and
+ *  converged). */
+inline std::vector<std::string> resultFieldKeys()
+{
+  const PhaserResult result;
+  std::vector<std::string> names;
+  visitResultFields(result, FieldNames{names});
+  return names;
+}
 
 /** \brief The members of "stages_ms": milliseconds per stage. */
-constexpr std::array<const char*, 8> kStageKeys = {
-    "target",     "sampling",    "sht",         "so3",
-    "refinement", "translation", "orientation", "verification"};
+inline std::vector<std::string> stageKeys()
+{
+  const StageTimes times;
+  std::vector<std::string> names;
+  visitStageTimes(times, FieldNames{names});
+  return names;
+}
+
+/** \brief The shared result keys. */
+inline const std::vector<std::string> kResultFieldKeys = resultFieldKeys();
+inline const std::vector<std::string> kStageKeys = stageKeys();
 
 } // namespace pcl::phaser::test

@@ -204,6 +204,28 @@ TEST(BatchRecords, AlignedRecordHasTheKeysOfPclPhaserAlignJson)
   EXPECT_EQ(stages, std::vector<std::string>(kStageKeys.begin(), kStageKeys.end()));
 }
 
+TEST(BatchRecords, RunFingerprintKeepsTheFormatOfEarlierRecords)
+{
+  pcl::phaser::PhaserParameters p;
+  const std::string plain = "shard 0/1, B 64, grid 128, voxel 0, passes 3, auto";
+  EXPECT_EQ(batch::runFingerprint(p, 0, 1), plain);
+  p.num_threads = 7; // results are bit-identical for any count
+  EXPECT_EQ(batch::runFingerprint(p, 0, 1), plain);
+  p.region = pcl::phaser::Region{1.0, 2.0, 3.0, 4.0};
+  p.max_tilt_deg = 10.0;
+  p.min_inlier_fraction = 0.3;
+  p.projection_center = pcl::phaser::ProjectionCenter::Centroid;
+  const std::string priors = "shard 1/4, B 64, grid 128, voxel 0, passes 3, centroid, "
+                             "region 1,2,3,4, tilt 10";
+  const std::string inliers = ", min_inlier_fraction 0.29999999999999999";
+  EXPECT_EQ(batch::runFingerprint(p, 1, 4), priors + inliers);
+  // The typed settings, in table order, only when not at their default.
+  p.normalized_refinement = false;
+  p.channels = pcl::phaser::CHANNEL_RANGE;
+  EXPECT_EQ(batch::runFingerprint(p, 1, 4),
+            priors + ", normalized_refinement false, channels range" + inliers);
+}
+
 TEST(BatchRecords, ALineCutShortByAKillIsCutOffAndAppendingGoesOn)
 {
   const std::string folder = freshFolder(), path = folder + "/out.jsonl";

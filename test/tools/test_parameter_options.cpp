@@ -159,7 +159,8 @@ TEST(EngineOptions, EveryRowHasItsOptionAndTheAliasesStay)
     EXPECT_EQ(pcl::phaser::engineOptions()[k].range, &r) << flag;
   }
   for (const char* alias :
-       {"-b", "--grid", "--passes", "--threads", "--max-tilt", "--center", "--region"})
+       {"-b", "--grid", "--passes", "--threads", "--max-tilt", "--center", "--region",
+        "--normalized-refinement", "--projection-center", "--channels"})
     EXPECT_GE(findEngineOption(alias), 0) << alias;
   EXPECT_EQ(findEngineOption("--icp-dist"), -1);
 }
@@ -182,6 +183,53 @@ TEST(EngineOptions, RegionFieldsRefineTheRegionAndAreValidated)
   pcl::phaser::PhaserParameters q;
   args.erase(pcl::phaser::findEngineOption("--region"));
   EXPECT_TRUE(has(pcl::phaser::setEngineOptions(args, q), "region_radius = 0"));
+}
+
+TEST(ParameterOptions, TypedOptionsRefuseBadNamesWithTheAllowedOnes)
+{
+  const struct {
+    const char* args;
+    const char* message;
+  } cases[] = {
+      {"--projection-center bogus",
+       "Invalid --projection-center 'bogus': expected one of sensor, centroid, auto"},
+      {"--center middle",
+       "Invalid --center 'middle': expected one of sensor, centroid"},
+      {"--normalized-refinement maybe",
+       "Invalid --normalized-refinement 'maybe': expected true or false"},
+      {"--channels range,bogus",
+       "Invalid --channels 'range,bogus': expected all, or "
+       "any of range, intensity, reflectivity, ambient, color"},
+      {"--channels -1", "Invalid --channels '-1'"}};
+  for (const auto& c : cases) {
+    const Output bad = run(std::string("--demo ") + c.args, true);
+    EXPECT_EQ(bad.code, 1) << c.args;
+    EXPECT_TRUE(has(bad.text, c.message)) << bad.text;
+  }
+  const Output help = run("-h", true);
+  EXPECT_TRUE(has(help.text, "--normalized-refinement BOOL")) << help.text;
+  EXPECT_TRUE(has(help.text, "--center MODE, --projection-center")) << help.text;
+  EXPECT_TRUE(has(help.text, "sensor, centroid, auto (default: auto)")) << help.text;
+  EXPECT_TRUE(has(help.text, "--channels LIST")) << help.text;
+}
+
+TEST(ParameterOptions, TypedOptionsReachTheEngine)
+{
+  // The settings the registration ran with, in --json: every row of the table.
+  const Output plain = run("--demo --json -m /dev/null.pcd", false);
+  const Output off = run("--demo --json -m /dev/null.pcd --normalized-refinement off "
+                         "--projection-center sensor --channels range",
+                         false);
+  ASSERT_EQ(plain.code, 0) << plain.text;
+  ASSERT_EQ(off.code, 0) << off.text;
+  for (const pcl::phaser::ParameterRange& r : pcl::phaser::kParameterRanges)
+    EXPECT_TRUE(has(plain.text, std::string("\"") + r.name + "\":")) << r.name;
+  EXPECT_TRUE(has(plain.text, "\"normalized_refinement\":true")) << plain.text;
+  EXPECT_TRUE(has(plain.text, "\"projection_center\":\"auto\"")) << plain.text;
+  EXPECT_TRUE(has(plain.text, "\"channels\":\"all\"")) << plain.text;
+  EXPECT_TRUE(has(off.text, "\"normalized_refinement\":false")) << off.text;
+  EXPECT_TRUE(has(off.text, "\"projection_center\":\"sensor\"")) << off.text;
+  EXPECT_TRUE(has(off.text, "\"channels\":\"range\"")) << off.text;
 }
 
 #ifdef PCL_PHASER_BATCH_BIN
@@ -236,11 +284,11 @@ TEST(EngineOptions, EveryOptionWorksInBothTools)
   const std::string batch_help = runTool(PCL_PHASER_BATCH_BIN, "-h", true).text;
   const std::string align_help = run("-h", true).text;
   for (const pcl::phaser::EngineOption& o : pcl::phaser::engineOptions()) {
-    std::vector<std::string> values = {o.flag == "--center" ? "sensor" : "1,2,3,4"};
+    std::vector<std::string> values = {"1,2,3,4"}; // --region
     if (o.range) {
-      values = {number(o.range->min)};
+      values = {pcl::phaser::parameterText(*o.range, o.range->min, 10)};
       if (!std::isinf(o.range->max))
-        values.push_back(number(o.range->max));
+        values.push_back(pcl::phaser::parameterText(*o.range, o.range->max, 10));
     }
     for (const std::string& value : values) {
       const std::string args =

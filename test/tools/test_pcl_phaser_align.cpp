@@ -326,6 +326,29 @@ TEST_F(PclPhaserAlign, JsonIsOneObjectWithTheKeys)
   EXPECT_NE(r.err.find("Registering"), std::string::npos);
 }
 
+TEST(ResultKeys, AreTheDocumentedOnes)
+{
+  // doc/cli.md, "The result's fields": one row per key of visitResultFields(), in
+  // order.
+  std::ifstream file(std::string(PCL_PHASER_DOC_DIR) + "/cli.md");
+  ASSERT_TRUE(file.good()) << "doc/cli.md is missing";
+  std::string line;
+  while (std::getline(file, line) && line != "### The result's fields") {
+  }
+  std::vector<std::string> documented;
+  std::string stages_row;
+  while (std::getline(file, line) && (documented.empty() || !line.empty()))
+    if (line.rfind("| `", 0) == 0) {
+      documented.push_back(line.substr(3, line.find('`', 3) - 3));
+      if (documented.back() == "stages_ms")
+        stages_row = line;
+    }
+  EXPECT_EQ(documented, kResultFieldKeys)
+      << "doc/cli.md's table of the result's fields differs from visitResultFields()";
+  for (const std::string& stage : kStageKeys)
+    EXPECT_NE(stages_row.find("`" + stage + "`"), std::string::npos) << stage;
+}
+
 TEST_F(PclPhaserAlign, GroundTruthOnRealScans)
 {
   const std::string rel = "lidar/hdl32_fastgicp/";
