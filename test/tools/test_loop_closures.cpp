@@ -35,6 +35,29 @@ bool runHandheldBatch(const std::string& folder, const std::string& poses,
   return code == 0;
 }
 
+/** pcl_phaser_optimize on \a folder/loops.g2o into \a folder/optimized.txt with
+ *  \a options, its output in \a folder/optimize.log, and --png \a folder/trajectory.png
+ *  when gnuplot is on PATH; true when it exited 0 (else a failure is recorded). */
+bool runOptimize(const std::string& folder, const std::string& options)
+{
+  const std::string optimize =
+      std::string(PCL_PHASER_OPTIMIZE_BIN) + " " + folder + "/loops.g2o " + folder +
+      "/optimized.txt" + options +
+      (onPath("gnuplot") ? " --png " + folder + "/trajectory.png" : "") + " > " +
+      folder + "/optimize.log";
+  const int code = exitCode(std::system(optimize.c_str()));
+  EXPECT_EQ(code, 0) << optimize;
+  return code == 0;
+}
+
+/** The trajectory PNG of runOptimize is 900 x 900 when gnuplot drew it. */
+void expectTrajectoryPng(const std::string& folder)
+{
+  if (onPath("gnuplot")) {
+    EXPECT_EQ(pngSize(folder + "/trajectory.png"), std::make_pair(900L, 900L));
+  }
+}
+
 } // namespace
 
 // End to end on the shared handheld sequence (30 scans, 74 m walked): its poses made to
@@ -54,12 +77,7 @@ TEST(LoopClosures, DriftedHandheldTrajectoryIsCorrected)
   ASSERT_TRUE(runHandheldBatch(folder, folder + "/drifted.txt",
                                "--radius 8 --min-gap 8 --g2o " + folder +
                                    "/loops.g2o --odometry"));
-  const std::string png =
-      onPath("gnuplot") ? " --png " + folder + "/trajectory.png" : "";
-  const std::string optimize = std::string(PCL_PHASER_OPTIMIZE_BIN) + " " + folder +
-                               "/loops.g2o " + folder + "/optimized.txt" + png + " > " +
-                               folder + "/optimize.log";
-  ASSERT_EQ(std::system(optimize.c_str()), 0) << optimize;
+  ASSERT_TRUE(runOptimize(folder, ""));
   std::vector<Eigen::Matrix4d> optimized, before;
   ASSERT_EQ(batch::readPoses(folder + "/optimized.txt", optimized), "");
   ASSERT_EQ(batch::readPoses(folder + "/drifted.txt", before), "");
@@ -75,9 +93,7 @@ TEST(LoopClosures, DriftedHandheldTrajectoryIsCorrected)
   EXPECT_GE(loops, 10);
   EXPECT_LT(after, 0.25);
   EXPECT_LT(after, 0.2 * drift);
-  if (!png.empty()) {
-    EXPECT_EQ(pngSize(folder + "/trajectory.png"), std::make_pair(900L, 900L));
-  }
+  expectTrajectoryPng(folder);
   std::filesystem::remove_all(folder);
 }
 
@@ -94,21 +110,13 @@ TEST(LoopClosures, DriftOptionShowsTheHandheldCorrection)
   ASSERT_TRUE(runHandheldBatch(folder, poses,
                                "--radius 8 --min-gap 8 --g2o " + folder +
                                    "/loops.g2o --odometry"));
-  const std::string png =
-      onPath("gnuplot") ? " --png " + folder + "/trajectory.png" : "";
-  const std::string optimize = std::string(PCL_PHASER_OPTIMIZE_BIN) + " " + folder +
-                               "/loops.g2o " + folder + "/optimized.txt --drift " +
-                               "1.5,0.05 --reference " + poses + png + " > " + folder +
-                               "/optimize.log";
-  ASSERT_EQ(exitCode(std::system(optimize.c_str())), 0) << optimize;
+  ASSERT_TRUE(runOptimize(folder, " --drift 1.5,0.05 --reference " + poses));
   const auto [before, after] = printedErrors(folder + "/optimize.log");
   std::printf("  --drift 1.5,0.05: %.3f m before, %.3f m after\n", before, after);
   EXPECT_GT(before, 1.0);
   EXPECT_LT(after, 0.25);
   EXPECT_LT(after, 0.2 * before);
-  if (!png.empty()) {
-    EXPECT_EQ(pngSize(folder + "/trajectory.png"), std::make_pair(900L, 900L));
-  }
+  expectTrajectoryPng(folder);
   std::filesystem::remove_all(folder);
 }
 
