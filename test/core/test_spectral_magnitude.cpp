@@ -6,7 +6,7 @@
  * its SO(3) correlation peaks at the rotation between two clouds that share no center.
  */
 #include "channels/spectral_magnitude.h"
-#include "pipeline/pipeline_stages.h"
+#include "pipeline/cloud_spectra.h"
 #include "so3_test_support.h"
 #include "uncertainty/peak_neighborhood.h"
 

@@ -5,10 +5,15 @@
  * The engine's entry point in the caller's frames: input checks, the projection
  * centers, the target cache, guess composition and the convergence decision.
  */
-#include "pipeline/estimate.h"
 #include "pipeline/projection_center.h"
+#include "pipeline/stages.h"
 #include "priors/allowed_poses.h"
 #include "support/buffer_pool.h"
+#include "support/error.h"
+#include "uncertainty/peak_neighborhood.h"
+
+#include <pcl_phaser/core/bingham.h>
+#include <pcl_phaser/core/pipeline.h>
 
 #include <mutex>
 #include <new>
@@ -21,7 +26,7 @@ struct Target::Cache {
   int sensor_centered = -1; ///< looksSensorCentered about the origin; < 0: not computed
   int origin_on_data = -1;  ///< originOnData about the origin; < 0: not computed
   int seen_from_origin = -1; ///< hiddenShare about the origin small; < 0: not computed
-  std::shared_ptr<const TargetModel> model;
+  std::shared_ptr<const detail::TargetModel> model;
   ProjectionCenter center = ProjectionCenter::SensorOrigin; ///< of model
   Eigen::Vector3d offset = Eigen::Vector3d::Zero(); ///< the projection center of model
   std::optional<detail::SearchRegion> region; ///< model is of the points in it only
@@ -46,11 +51,7 @@ public:
 namespace {
 
 constexpr double kMaxCoordinate = 1e6; ///< beyond: float32 is coarser than 6 cm
-/** Most voxels a side of the translation grid of clouds not seen from their center
- *  (objects): the polish, not the grid, pins their translation, and 128 voxels put
- *  several grid cells between a bunny view's points (the bunny pairs: as right at 64,
- *  2.4x faster). */
-constexpr int kObjectGridSize = 64;
+
 /** Empty when a cloud can be registered, else why not. */
 std::string checkCloud(const Eigen::Matrix3Xd& points, const ChannelValues& channels,
                        const char* which)
@@ -92,20 +93,6 @@ std::string checkInputs(const Target& target, const SourceCloud& source,
   return problem;
 }
 
-/** Whether a model prepared with \a prepared serves \a wanted. */
-bool sameModel(const StageParameters& prepared, const StageParameters& wanted)
-{
-  return prepared.bandwidth == wanted.bandwidth &&
-         prepared.spatial_grid_size == wanted.spatial_grid_size &&
-         prepared.voxel_size == wanted.voxel_size && prepared.passes == wanted.passes &&
-         prepared.fusion_levels == wanted.fusion_levels &&
-         prepared.normalized_refinement == wanted.normalized_refinement &&
-         prepared.orientation_candidates == wanted.orientation_candidates &&
-         prepared.orientation_bandwidth == wanted.orientation_bandwidth &&
-         prepared.sensor_centered == wanted.sensor_centered &&
-         prepared.viewpoints == wanted.viewpoints;
-}
-
 /** Whether the target's frame origin lies on its data (its cache locked). */
 bool targetOriginOnData(const Target& target)
 {
@@ -117,7 +104,7 @@ bool targetOriginOnData(const Target& target)
 }
 
 /** Whether the target is seen from its frame origin (hiddenShare, cached); a map
- *  (with a region, or far from its origin) counts as seen, as before. */
+ *  (with a region, or far from its origin) counts as seen. */
 bool targetSeenFromOrigin(const Target& target, bool map_target)
 {
   auto& cache = TargetAccess::cache(target);
@@ -151,28 +138,45 @@ ProjectionCenter chooseCenter(const Target& target, const Eigen::Matrix3Xd& move
              : ProjectionCenter::Centroid;
 }
 
+/** Which free-space tests apply to a pair about \a center; \a moved: the source with
+ *  the guess; \a map_target: a region prior places the source in the target. */
+detail::StageMode stageMode(const Target& target, const Eigen::Matrix3Xd& moved,
+                            const Eigen::Matrix4d& guess, ProjectionCenter center,
+                            bool map_target)
+{
+  detail::StageMode mode;
+  mode.sensor_centered = center == ProjectionCenter::SensorOrigin;
+  // Each free-space test needs its cloud seen from its center (an object's frame origin
+  // is no scanner's; a scan moved by the guess is seen from the guess's translation).
+  mode.viewpoints = mode.sensor_centered && targetSeenFromOrigin(target, map_target);
+  mode.source_viewpoint =
+      mode.viewpoints &&
+      hiddenShare(moved, guess.topRightCorner<3, 1>()) <= kMaxHiddenShare;
+  return mode;
+}
+
 /** The target model, cached or prepared (into \a target_ms), and its center: with a
  *  \a region, of the points a sensor there could see, about the region's center; else
  *  the centroid about centroids or when the frame origin is off the data, else the
  *  origin. */
-std::shared_ptr<const TargetModel>
+std::shared_ptr<const detail::TargetModel>
 targetModel(const Target& target, ProjectionCenter center,
-            const StageParameters& params,
+            const detail::StageSettings& settings,
             const std::optional<detail::SearchRegion>& region, Eigen::Vector3d& offset,
             double& target_ms)
 {
   auto& cache = TargetAccess::cache(target);
   std::lock_guard<std::mutex> lock(cache.mutex);
   if (!cache.model || cache.center != center || cache.region != region ||
-      !sameModel(cache.model->params, params)) {
+      !detail::sameModel(cache.model->settings, settings)) {
     cache.model.reset();
     if (region) {
       const detail::RegionCloud cloud = detail::thinForModel(
           detail::cropToRegion(target.points(), TargetAccess::channels(target),
                                *region),
-          params.spatial_grid_size, params.voxel_size);
+          settings.spatial_grid_size, settings.voxel_size);
       cache.offset = region->center;
-      cache.model = detail::prepareTarget(cloud.points, params, cloud.channels);
+      cache.model = detail::prepareTarget(cloud.points, settings, cloud.channels);
     } else {
       Eigen::Matrix3Xd points = target.points();
       // About a far origin the target would be a small cap of the sphere, and the true
@@ -182,7 +186,7 @@ targetModel(const Target& target, ProjectionCenter center,
                          : Eigen::Vector3d::Zero();
       points.colwise() -= cache.offset;
       cache.model =
-          detail::prepareTarget(points, params, TargetAccess::channels(target));
+          detail::prepareTarget(points, settings, TargetAccess::channels(target));
     }
     cache.center = center;
     cache.region = region;
@@ -235,34 +239,21 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
   const ProjectionCenter center =
       allowed.region ? ProjectionCenter::SensorOrigin
                      : chooseCenter(target, moved, guess, params.projection_center);
-  StageParameters stage_params{params, center == ProjectionCenter::SensorOrigin};
-  // Each free-space test needs its cloud seen from its center (an object's frame origin
-  // is no scanner's; a scan moved by the guess is seen from the guess's translation).
-  stage_params.viewpoints = stage_params.sensor_centered &&
-                            targetSeenFromOrigin(target, allowed.region.has_value());
-  stage_params.source_viewpoint =
-      stage_params.viewpoints &&
-      hiddenShare(moved, guess.topRightCorner<3, 1>()) <= kMaxHiddenShare;
-  stage_params.num_threads = resolveThreadCount(params.num_threads);
-  if (stage_params.sensor_centered && !stage_params.viewpoints &&
-      params.voxel_size == 0.0)
-    stage_params.spatial_grid_size =
-        std::min(params.spatial_grid_size, kObjectGridSize);
-  // The tilt pull it corrects comes from a scanner's band, seen about its origin only.
-  stage_params.normalized_refinement =
-      params.normalized_refinement && stage_params.sensor_centered;
+  const detail::StageSettings settings = detail::stageSettings(
+      params, stageMode(target, moved, guess, center, allowed.region.has_value()),
+      allowed);
   PhaserResult result;
   Eigen::Vector3d target_center;
-  const std::shared_ptr<const TargetModel> model =
-      targetModel(target, center, stage_params, allowed.region, target_center,
+  const std::shared_ptr<const detail::TargetModel> model =
+      targetModel(target, center, settings, allowed.region, target_center,
                   result.diagnostics.times.target);
   const Eigen::Vector3d source_center =
       center == ProjectionCenter::Centroid
           ? Eigen::Vector3d(moved.rowwise().mean())
           : Eigen::Vector3d(guess.topRightCorner<3, 1>());
   moved.colwise() -= source_center;
-  const RigidPose pose =
-      detail::estimateCentered(*model, moved, stage_params, source.channels, result);
+  const RigidPose pose = detail::estimateCentered(*model, moved, settings, allowed,
+                                                  source.channels, result);
   result.projection_center = center;
   result.transformation =
       callerFrame(pose.R, pose.t, source_center, target_center, guess);

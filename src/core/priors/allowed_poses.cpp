@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace pcl::phaser::detail {
 namespace {
@@ -60,6 +61,23 @@ std::string AllowedPoses::refusal(const Eigen::Matrix4d& T) const
     return text;
   }
   return {};
+}
+
+double AllowedPoses::shiftBound(double coarse_voxel) const
+{
+  return region ? region->radius + coarse_voxel
+                : std::numeric_limits<double>::infinity();
+}
+
+int AllowedPoses::rotationRows(int output_bandwidth) const
+{
+  return std::isfinite(max_tilt) ? betaRowsForTilt(output_bandwidth, max_tilt) : 0;
+}
+
+int AllowedPoses::orientationCandidates(int requested) const
+{
+  return std::isfinite(max_tilt) ? tiltConeOrientationCandidates(max_tilt, requested)
+                                 : requested;
 }
 
 AllowedPoses allowedPoses(const PhaserParameters& params, const Eigen::Matrix3Xd& moved,

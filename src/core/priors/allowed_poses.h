@@ -5,7 +5,8 @@
 #pragma once
 
 // Internal to the engine: the priors of PhaserParameters (region, max_tilt_deg) as the
-// poses they allow, and the guard that no other pose is returned as converged.
+// poses they allow, what the search asks of them, and the guard that no other pose is
+// returned as converged.
 #include "priors/region.h"
 
 #include <pcl_phaser/core/parameters.h>
@@ -31,6 +32,18 @@ struct AllowedPoses {
 
   /** \brief Empty when \a T is allowed, else why not. */
   std::string refusal(const Eigen::Matrix4d& T) const;
+
+  /** \brief Meters: the longest shift the search of the first pass may take, the
+   *  region's radius and one \a coarse_voxel (the source's sensor sits at the centered
+   *  origin, the region's center at the target's); infinity without a region. */
+  double shiftBound(double coarse_voxel) const;
+  /** \brief Beta rows of a (2 Bo)^3 SO(3) grid of \a output_bandwidth Bo the search
+   *  correlates (betaRowsForTilt of max_tilt); 0, the whole grid, without a tilt cone.
+   */
+  int rotationRows(int output_bandwidth) const;
+  /** \brief Of \a requested orientation-histogram candidates, those the search tries
+   *  (tiltConeOrientationCandidates); all without a tilt cone. */
+  int orientationCandidates(int requested) const;
 };
 
 /** \brief The poses \a params allow for the source \a moved (its points after \a

@@ -24,7 +24,7 @@ constexpr Eigen::Index kRangeSamples = 20000;
 /** Fewer target points in the region: nothing to register against. */
 constexpr Eigen::Index kMinRegionPoints = 100;
 /** The finest cell the target model uses, in coarse voxels: its indexes keep one
- *  point per cube of half a coarse voxel / 8 (estimate.cpp), so a map thinned to it
+ *  point per cube of half a coarse voxel / 8 (target_model.cpp), so a map thinned to it
  *  loses nothing a stage sees. */
 constexpr double kFinestCell = 1.0 / 16.0;
 

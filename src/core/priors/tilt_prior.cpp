@@ -28,21 +28,12 @@ double tiltOf(const Eigen::Matrix3d& R)
   return std::acos(std::clamp(R(2, 2), -1.0, 1.0));
 }
 
-int tiltPriorRows(const PhaserParameters& params, int output_bandwidth)
+int tiltConeOrientationCandidates(double max_tilt, int candidates)
 {
-  if (!tiltPriorOn(params))
-    return 0;
-  return betaRowsForTilt(output_bandwidth, params.max_tilt_deg * M_PI / 180.0);
-}
-
-int tiltPriorOrientationCandidates(const PhaserParameters& params)
-{
-  if (!tiltPriorOn(params))
-    return params.orientation_candidates;
   // Never fewer than the share of rotations the cone holds: wide cones keep them all.
-  const double cone_share = 0.5 * (1.0 - std::cos(params.max_tilt_deg * M_PI / 180.0));
-  return static_cast<int>(std::ceil(std::max(kTiltPriorOrientationShare, cone_share) *
-                                    params.orientation_candidates));
+  const double cone_share = 0.5 * (1.0 - std::cos(max_tilt));
+  return static_cast<int>(
+      std::ceil(std::max(kTiltPriorOrientationShare, cone_share) * candidates));
 }
 
 } // namespace pcl::phaser::detail

@@ -5,7 +5,7 @@
 #pragma once
 
 // Internal to the engine: how the gravity prior (PhaserParameters::max_tilt_deg)
-// restricts the search; allowed_poses.h guards the answer.
+// restricts the search; AllowedPoses (allowed_poses.h) asks these for its tilt cone.
 #include <pcl_phaser/core/parameters.h>
 
 #include <Eigen/Core>
@@ -20,12 +20,9 @@ bool tiltPriorOn(const PhaserParameters& params);
  */
 double tiltOf(const Eigen::Matrix3d& R);
 
-/** \brief Beta rows of a (2 Bo)^3 SO(3) grid the prior of \a params searches
- *  (betaRowsForTilt); 0, the whole grid, when the prior is off. */
-int tiltPriorRows(const PhaserParameters& params, int output_bandwidth);
-
-/** \brief The orientation candidates searched under the prior of \a params: fewer
- *  (those the cone leaves are fewer and more often right); all when it is off. */
-int tiltPriorOrientationCandidates(const PhaserParameters& params);
+/** \brief The orientation candidates searched of \a candidates within the tilt cone of
+ *  \a max_tilt radians: fewer (those the cone leaves are fewer and more often right),
+ *  never fewer than the share of rotations the cone holds. */
+int tiltConeOrientationCandidates(double max_tilt, int candidates);
 
 } // namespace pcl::phaser::detail

@@ -4,16 +4,16 @@
  */
 #pragma once
 
-// Internal to the engine: ranking, limits and the verdict on the final pose
-// (pipeline_verdict.cpp).
-#include "pipeline/stage_state.h"
+// Internal to the engine: whether a pose stands out, and the verdict on the final pose
+// (verdict.cpp).
+#include "pipeline/pose.h"
+
+#include <pcl_phaser/core/result.h>
+
+#include <limits>
+#include <vector>
 
 namespace pcl::phaser::detail {
-
-/** \a measured with its rank: score less kViolationWeight x both violations. */
-Verification ranked(const Verification& measured);
-/** Whether \a verification meets the verification limits of \a params. */
-bool meetsLimits(const Verification& verification, const PhaserParameters& params);
 
 /** How the pose compared with the best hypothesis distinct from it. */
 struct Distinctness {
