@@ -7,12 +7,14 @@
  */
 #include "priors/allowed_poses.h"
 #include "priors/region.h"
+#include "so3/so3_correlation_grid.h"
 #include "support/error.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 namespace pcl::phaser::detail {
 namespace {
@@ -127,6 +129,29 @@ TEST(AllowedPoses, TiltIsMeasuredAfterTheGuessAndClampedIntoTheCone)
   const Eigen::Matrix3d R = result.transformation.topLeftCorner<3, 3>() *
                             guess.topLeftCorner<3, 3>().transpose();
   EXPECT_NEAR(std::acos(R(2, 2)) * 180.0 / M_PI, 10.0, 1e-9);
+}
+
+TEST(AllowedPoses, TheSearchAsksForItsShiftBoundRowsAndCandidates)
+{
+  PhaserParameters params;
+  const Eigen::Matrix3Xd moved = Eigen::Matrix3Xd::Ones(3, 4);
+  const AllowedPoses free = allowedPoses(params, moved, Eigen::Matrix4d::Identity());
+  EXPECT_EQ(free.shiftBound(0.5), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(free.rotationRows(64), 0); // the whole grid
+  EXPECT_EQ(free.orientationCandidates(10), 10);
+  params.region = Region{1.0, 2.0, 0.0, 5.0, 50.0};
+  params.max_tilt_deg = 10.0;
+  const AllowedPoses narrow = allowedPoses(params, moved, Eigen::Matrix4d::Identity());
+  EXPECT_EQ(narrow.shiftBound(0.5), 5.5); // the radius and one coarse voxel
+  EXPECT_EQ(narrow.rotationRows(64), betaRowsForTilt(64, 10.0 * M_PI / 180.0));
+  EXPECT_GT(narrow.rotationRows(64), 0);
+  EXPECT_LT(narrow.rotationRows(64), 128);
+  EXPECT_EQ(narrow.orientationCandidates(10), 2); // 20 % of them in a narrow cone
+  EXPECT_EQ(narrow.orientationCandidates(0), 0);
+  params.max_tilt_deg = 120.0; // the cone holds 75 % of the rotations
+  EXPECT_EQ(allowedPoses(params, moved, Eigen::Matrix4d::Identity())
+                .orientationCandidates(10),
+            8);
 }
 
 } // namespace

@@ -4,6 +4,7 @@
  */
 #include "channels/surface_orientation.h"
 #include "index/point_index.h"
+#include "point_test_support.h"
 #include "spatial/spatial_correlation.h"
 #include "support/error.h"
 #include "verification/verification.h"
@@ -22,15 +23,7 @@ using namespace pcl::phaser;
 
 namespace {
 
-Eigen::Matrix3Xd randomPoints(int n, double extent, unsigned seed)
-{
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-extent, extent);
-  Eigen::Matrix3Xd p(3, n);
-  for (int i = 0; i < n; ++i)
-    p.col(i) = Eigen::Vector3d(u(rng), u(rng), u(rng));
-  return p;
-}
+using test::randomPoints;
 
 /** A wall x = d (|y|, |z| < half) sampled on a grid of step h. */
 Eigen::Matrix3Xd wall(double d, double half, double h)
