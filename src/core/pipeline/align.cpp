@@ -2,11 +2,11 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * The engine's entry point in the caller's frames: input checks, the projection
- * centers, the target cache, guess composition and the convergence decision.
+ * The engine's entry point in the caller's frames: input checks, the priors and the
+ * stage settings, guess composition, the convergence decision and the covariance.
  */
-#include "pipeline/projection_center.h"
 #include "pipeline/stages.h"
+#include "pipeline/target.h"
 #include "priors/allowed_poses.h"
 #include "support/buffer_pool.h"
 #include "support/error.h"
@@ -15,38 +15,9 @@
 #include <pcl_phaser/core/bingham.h>
 #include <pcl_phaser/core/pipeline.h>
 
-#include <mutex>
 #include <new>
 
 namespace pcl::phaser {
-
-/** What a Target derives from its points: looksSensorCentered and the last model. */
-struct Target::Cache {
-  std::mutex mutex;
-  int sensor_centered = -1; ///< looksSensorCentered about the origin; < 0: not computed
-  int origin_on_data = -1;  ///< originOnData about the origin; < 0: not computed
-  int seen_from_origin = -1; ///< hiddenShare about the origin small; < 0: not computed
-  std::shared_ptr<const detail::TargetModel> model;
-  ProjectionCenter center = ProjectionCenter::SensorOrigin; ///< of model
-  Eigen::Vector3d offset = Eigen::Vector3d::Zero(); ///< the projection center of model
-  std::optional<detail::SearchRegion> region; ///< model is of the points in it only
-};
-
-Target::Target(Eigen::Matrix3Xd points, ChannelValues channels)
-    : points_(std::move(points))
-    , channels_(std::move(channels))
-    , cache_(std::make_unique<Cache>())
-{
-}
-
-Target::~Target() = default;
-
-/** The engine's access to a Target's channels and cache. */
-class TargetAccess {
-public:
-  static const ChannelValues& channels(const Target& t) { return t.channels_; }
-  static auto& cache(const Target& t) { return *t.cache_; }
-};
 
 namespace {
 
@@ -93,109 +64,6 @@ std::string checkInputs(const Target& target, const SourceCloud& source,
   return problem;
 }
 
-/** Whether the target's frame origin lies on its data (its cache locked). */
-bool targetOriginOnData(const Target& target)
-{
-  auto& cache = TargetAccess::cache(target);
-  if (cache.origin_on_data < 0)
-    cache.origin_on_data =
-        originOnData(target.points(), Eigen::Vector3d::Zero()) ? 1 : 0;
-  return cache.origin_on_data == 1;
-}
-
-/** Whether the target is seen from its frame origin (hiddenShare, cached); a map
- *  (with a region, or far from its origin) counts as seen. */
-bool targetSeenFromOrigin(const Target& target, bool map_target)
-{
-  auto& cache = TargetAccess::cache(target);
-  std::lock_guard<std::mutex> lock(cache.mutex);
-  if (map_target || !targetOriginOnData(target))
-    return true;
-  if (cache.seen_from_origin < 0)
-    cache.seen_from_origin =
-        hiddenShare(target.points(), Eigen::Vector3d::Zero()) <= kMaxHiddenShare;
-  return cache.seen_from_origin == 1;
-}
-
-/** The stage mode; \a moved: the source with the guess. A target whose origin is off
- *  its data (a map in a site frame) leaves the choice to the source. */
-ProjectionCenter chooseCenter(const Target& target, const Eigen::Matrix3Xd& moved,
-                              const Eigen::Matrix4d& guess, ProjectionCenter requested)
-{
-  if (requested != ProjectionCenter::Automatic)
-    return requested;
-  auto& cache = TargetAccess::cache(target);
-  bool target_lidar = false;
-  {
-    std::lock_guard<std::mutex> lock(cache.mutex);
-    if (cache.sensor_centered < 0)
-      cache.sensor_centered =
-          looksSensorCentered(target.points(), Eigen::Vector3d::Zero()) ? 1 : 0;
-    target_lidar = cache.sensor_centered == 1 || !targetOriginOnData(target);
-  }
-  return target_lidar && looksSensorCentered(moved, guess.topRightCorner<3, 1>())
-             ? ProjectionCenter::SensorOrigin
-             : ProjectionCenter::Centroid;
-}
-
-/** Which free-space tests apply to a pair about \a center; \a moved: the source with
- *  the guess; \a map_target: a region prior places the source in the target. */
-detail::StageMode stageMode(const Target& target, const Eigen::Matrix3Xd& moved,
-                            const Eigen::Matrix4d& guess, ProjectionCenter center,
-                            bool map_target)
-{
-  detail::StageMode mode;
-  mode.sensor_centered = center == ProjectionCenter::SensorOrigin;
-  // Each free-space test needs its cloud seen from its center (an object's frame origin
-  // is no scanner's; a scan moved by the guess is seen from the guess's translation).
-  mode.viewpoints = mode.sensor_centered && targetSeenFromOrigin(target, map_target);
-  mode.source_viewpoint =
-      mode.viewpoints &&
-      hiddenShare(moved, guess.topRightCorner<3, 1>()) <= kMaxHiddenShare;
-  return mode;
-}
-
-/** The target model, cached or prepared (into \a target_ms), and its center: with a
- *  \a region, of the points a sensor there could see, about the region's center; else
- *  the centroid about centroids or when the frame origin is off the data, else the
- *  origin. */
-std::shared_ptr<const detail::TargetModel>
-targetModel(const Target& target, ProjectionCenter center,
-            const detail::StageSettings& settings,
-            const std::optional<detail::SearchRegion>& region, Eigen::Vector3d& offset,
-            double& target_ms)
-{
-  auto& cache = TargetAccess::cache(target);
-  std::lock_guard<std::mutex> lock(cache.mutex);
-  if (!cache.model || cache.center != center || cache.region != region ||
-      !detail::sameModel(cache.model->settings, settings)) {
-    cache.model.reset();
-    if (region) {
-      const detail::RegionCloud cloud = detail::thinForModel(
-          detail::cropToRegion(target.points(), TargetAccess::channels(target),
-                               *region),
-          settings.spatial_grid_size, settings.voxel_size);
-      cache.offset = region->center;
-      cache.model = detail::prepareTarget(cloud.points, settings, cloud.channels);
-    } else {
-      Eigen::Matrix3Xd points = target.points();
-      // About a far origin the target would be a small cap of the sphere, and the true
-      // shift would lie outside its translation grid.
-      cache.offset = center == ProjectionCenter::Centroid || !targetOriginOnData(target)
-                         ? Eigen::Vector3d(points.rowwise().mean())
-                         : Eigen::Vector3d::Zero();
-      points.colwise() -= cache.offset;
-      cache.model =
-          detail::prepareTarget(points, settings, TargetAccess::channels(target));
-    }
-    cache.center = center;
-    cache.region = region;
-    target_ms = cache.model->preparation_ms;
-  }
-  offset = cache.offset;
-  return cache.model;
-}
-
 /** p_target = R (G p_source - c_s) + c_t + t, as a 4 x 4 matrix. */
 Eigen::Matrix4d callerFrame(const Eigen::Matrix3d& R, const Eigen::Vector3d& t,
                             const Eigen::Vector3d& source_center,
@@ -237,16 +105,18 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
                    guess.topRightCorner<3, 1>();
   const detail::AllowedPoses allowed = detail::allowedPoses(params, moved, guess);
   const ProjectionCenter center =
-      allowed.region ? ProjectionCenter::SensorOrigin
-                     : chooseCenter(target, moved, guess, params.projection_center);
+      allowed.region
+          ? ProjectionCenter::SensorOrigin
+          : detail::chooseCenter(target, moved, guess, params.projection_center);
   const detail::StageSettings settings = detail::stageSettings(
-      params, stageMode(target, moved, guess, center, allowed.region.has_value()),
+      params,
+      detail::stageMode(target, moved, guess, center, allowed.region.has_value()),
       allowed);
   PhaserResult result;
   Eigen::Vector3d target_center;
   const std::shared_ptr<const detail::TargetModel> model =
-      targetModel(target, center, settings, allowed.region, target_center,
-                  result.diagnostics.times.target);
+      detail::targetModel(target, center, settings, allowed.region, target_center,
+                          result.diagnostics.times.target);
   const Eigen::Vector3d source_center =
       center == ProjectionCenter::Centroid
           ? Eigen::Vector3d(moved.rowwise().mean())

@@ -27,7 +27,8 @@ struct StageMode {
 };
 
 /** The settings the stages use: the PhaserParameters of the same names as the mode
- *  and the priors adjust them (stageSettings), and the mode. */
+ *  and the priors adjust them, and the mode. stageSettings() sets every field (the
+ *  defaults here are placeholders); the stages only read them. */
 struct StageSettings {
   int bandwidth = 0;              ///< B of the spherical spectra and the SO(3) grid
   int fusion_levels = 0;          ///< of the spherical signals
@@ -42,7 +43,7 @@ struct StageSettings {
   bool normalized_refinement = false; ///< about sensor origins only
   VerificationLimits limits;          ///< of a verified pose
   int num_threads = 1;                ///< resolved, >= 1
-  StageMode mode;
+  StageMode mode;                     ///< which free-space tests apply
 };
 
 /** The settings of \a params for a pair registered in \a mode under the priors
