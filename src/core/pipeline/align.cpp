@@ -8,6 +8,7 @@
 #include "pipeline/estimate.h"
 #include "pipeline/projection_center.h"
 #include "priors/allowed_poses.h"
+#include "spatial/grid_frame.h"
 #include "support/buffer_pool.h"
 
 #include <mutex>
@@ -24,6 +25,8 @@ struct Target::Cache {
   std::shared_ptr<const TargetModel> model;
   ProjectionCenter center = ProjectionCenter::SensorOrigin; ///< of model
   Eigen::Vector3d offset = Eigen::Vector3d::Zero(); ///< the projection center of model
+  /** The axes of model: its points are axes (p - offset). */
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
   std::optional<detail::SearchRegion> region; ///< model is of the points in it only
 };
 
@@ -151,15 +154,16 @@ ProjectionCenter chooseCenter(const Target& target, const Eigen::Matrix3Xd& move
              : ProjectionCenter::Centroid;
 }
 
-/** The target model, cached or prepared (into \a target_ms), and its center: with a
- *  \a region, of the points a sensor there could see, about the region's center; else
- *  the centroid about centroids or when the frame origin is off the data, else the
- *  origin. */
+/** The target model, cached or prepared (into \a target_ms), its center and axes:
+ *  with a \a region, of the points a sensor there could see, about the region's center;
+ *  else the centroid about centroids or when the frame origin is off the data, else the
+ *  origin. A target whose frame origin is off its data (a map in a site frame) is
+ *  turned about z onto its smallest box (gridAlignedYaw). */
 std::shared_ptr<const TargetModel>
 targetModel(const Target& target, ProjectionCenter center,
             const StageParameters& params,
             const std::optional<detail::SearchRegion>& region, Eigen::Vector3d& offset,
-            double& target_ms)
+            Eigen::Matrix3d& axes, double& target_ms)
 {
   auto& cache = TargetAccess::cache(target);
   std::lock_guard<std::mutex> lock(cache.mutex);
@@ -177,18 +181,26 @@ targetModel(const Target& target, ProjectionCenter center,
       Eigen::Matrix3Xd points = target.points();
       // About a far origin the target would be a small cap of the sphere, and the true
       // shift would lie outside its translation grid.
-      cache.offset = center == ProjectionCenter::Centroid || !targetOriginOnData(target)
+      const bool site_frame = !targetOriginOnData(target);
+      cache.offset = center == ProjectionCenter::Centroid || site_frame
                          ? Eigen::Vector3d(points.rowwise().mean())
                          : Eigen::Vector3d::Zero();
       points.colwise() -= cache.offset;
+      cache.axes =
+          site_frame ? detail::gridAlignedYaw(points) : Eigen::Matrix3d::Identity();
+      if (site_frame)
+        points = cache.axes * points;
       cache.model =
           detail::prepareTarget(points, params, TargetAccess::channels(target));
     }
+    if (region)
+      cache.axes = Eigen::Matrix3d::Identity();
     cache.center = center;
     cache.region = region;
     target_ms = cache.model->preparation_ms;
   }
   offset = cache.offset;
+  axes = cache.axes;
   return cache.model;
 }
 
@@ -209,6 +221,33 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& a)
 {
   return (Eigen::Matrix3d() << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0)
       .finished();
+}
+
+/** \a pose and what \a result holds of it, found against the target model turned by
+ *  \a axes, turned back to the target's axes. */
+void turnBack(const Eigen::Matrix3d& axes, RigidPose& pose, PhaserResult& result)
+{
+  if (axes.isIdentity(0.0))
+    return;
+  const Eigen::Matrix3d back = axes.transpose();
+  pose.R = back * pose.R;
+  pose.t = back * pose.t;
+  PhaserDiagnostics& diagnostics = result.diagnostics;
+  for (Hypothesis& h : diagnostics.hypotheses) {
+    h.rotation = back * h.rotation;
+    h.translation = back * h.translation;
+  }
+  const Eigen::Quaterniond q_back(back);
+  for (Eigen::Vector4d& s : diagnostics.rotation_samples) {
+    const Eigen::Quaterniond q = q_back * Eigen::Quaterniond(s[0], s[1], s[2], s[3]);
+    s = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+  }
+  Eigen::Matrix<double, 6, 6> B = Eigen::Matrix<double, 6, 6>::Zero();
+  B.topLeftCorner<3, 3>() = back;
+  B.bottomRightCorner<3, 3>() = back;
+  result.fit_covariance = B * result.fit_covariance * B.transpose();
+  result.translation_covariance =
+      back * result.translation_covariance * back.transpose();
 }
 
 /** Verified and, about centroids, a distinct peak (half the score with a clear overlap:
@@ -253,16 +292,18 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
       params.normalized_refinement && stage_params.sensor_centered;
   PhaserResult result;
   Eigen::Vector3d target_center;
+  Eigen::Matrix3d axes;
   const std::shared_ptr<const TargetModel> model =
-      targetModel(target, center, stage_params, allowed.region, target_center,
+      targetModel(target, center, stage_params, allowed.region, target_center, axes,
                   result.diagnostics.times.target);
   const Eigen::Vector3d source_center =
       center == ProjectionCenter::Centroid
           ? Eigen::Vector3d(moved.rowwise().mean())
           : Eigen::Vector3d(guess.topRightCorner<3, 1>());
   moved.colwise() -= source_center;
-  const RigidPose pose =
+  RigidPose pose =
       detail::estimateCentered(*model, moved, stage_params, source.channels, result);
+  turnBack(axes, pose, result);
   result.projection_center = center;
   result.transformation =
       callerFrame(pose.R, pose.t, source_center, target_center, guess);
