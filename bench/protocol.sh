@@ -2,6 +2,9 @@
 # The 628 protocol trials (doc/benchmarks.md, *How to reproduce*) into one folder of
 # CSVs, compared with a baseline folder when one is given:
 #   bench/protocol.sh OUT [BASELINE]     (env: BUILD=build, DATA=../shared/data)
+# METHOD=phaser_xyz (PointXYZ: range alone, no intensity) runs the same trials with that
+# method only, compared trial by trial with the baseline's `phaser` rows: where fusion
+# changes the answer.
 # Each engine change is judged by the totals it prints (successes, converged successes,
 # false accepts), the revisit medians and the trials whose success or claim changed.
 set -euo pipefail
@@ -12,7 +15,8 @@ B=${BUILD:-$here/build}/bench/pcl_phaser_benchmark
 data=(-data "${DATA:-$here/../shared/data}")
 [[ -x $B ]] || { echo "no $B: build with -DPCL_PHASER_BUILD_BENCH=ON" >&2; exit 2; }
 mkdir -p "$out"
-run() { local csv=$1; shift; "$B" "${data[@]}" "$@" -methods phaser -csv "$out/$csv" >>"$out/log" 2>&1; }
+method=${METHOD:-phaser}
+run() { local csv=$1; shift; "$B" "${data[@]}" "$@" -methods "$method" -csv "$out/$csv" >>"$out/log" 2>&1; }
 : >"$out/log"
 run rev.csv -study revisits
 run der.csv -study revisits -derived-pairs 10
@@ -20,6 +24,7 @@ run rw5.csv -study revisits -source-wedge 0.5
 run rw25.csv -study revisits -source-wedge 0.25
 run w.csv -poses 10 -conditions overlap:0.5,overlap:0.25,overlap:0.1
 run w0.csv -poses 10 -conditions overlap:0.5,overlap:0.25,overlap:0.1 -t_max 0
-"$B" "${data[@]}" -poses 10 -methods phaser,phaser_xyz \
+[[ $method == phaser ]] && sweep_methods=phaser,phaser_xyz || sweep_methods=$method
+"$B" "${data[@]}" -poses 10 -methods "$sweep_methods" \
   -conditions clean,noise:50,noise:40,sparsity:0.25,sparsity:0.1 -csv "$out/sw.csv" >>"$out/log" 2>&1
-python3 "$here/bench/protocol_compare.py" "$out" ${baseline:+"$baseline"}
+python3 "$here/bench/protocol_compare.py" ${METHOD:+--method "$METHOD"} "$out" ${baseline:+"$baseline"}

@@ -8,10 +8,14 @@
  * timing): a fresh align (target set again: spectra, grids and index rebuilt) and a
  * cached one, with 1 and with 2 engine threads, each with its stages and minor page
  * faults; then two aligns of consecutive pairs in two threads of the process (1 engine
- * thread each) against the same two in series. Medians over the pairs, in ms and in
- * FFT units (one 128^3 r2c FFT on one thread, measured before and after the aligns).
+ * thread each) against the same two in series; then the fused align (range and
+ * intensity) against a range-only one (channels = range), alternated per pair. Medians
+ * over the pairs, in ms and in FFT units (one 128^3 r2c FFT on one thread, measured
+ * before and after the aligns).
  *
- *   pcl_phaser_revisit_speed [-data DIR] [-pairs-file F] [-max-pairs N]
+ *   pcl_phaser_revisit_speed [-data DIR] [-pairs-file F] [-max-pairs N] [-fusion]
+ *
+ * -fusion: the fused against range-only comparison alone.
  *
  * The list: `source target ...` per line (# comments), scans under its folder.
  */
@@ -24,6 +28,8 @@
 #include <pcl/console/parse.h>
 #include <pcl/filters/filter.h>
 #include <pcl/point_types.h>
+
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <chrono>
@@ -99,6 +105,14 @@ double medianOf(const std::vector<Timing>& runs, const Field& field)
   return median(v);
 }
 
+void printHeader()
+{
+  std::printf(
+      "| threads, target | total | target prep | sampling | SO(3) | refinement | "
+      "translation | verification | other | minor page faults |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+}
+
 void printRow(const char* label, const std::vector<Timing>& runs, double unit)
 {
   using T = const Timing&;
@@ -145,6 +159,56 @@ double twoThreadsRatio(const std::vector<Pair>& pairs)
   return median(ratios);
 }
 
+/** A fresh align of \a p with 2 engine threads and \a channels; its result. */
+Timing alignWithChannels(const Pair& p, std::uint32_t channels,
+                         pcl::phaser::PhaserResult& result)
+{
+  pcl::PhaserRegistration<PointT, PointT> phaser;
+  pcl::phaser::PhaserParameters params;
+  params.num_threads = 2;
+  params.channels = channels;
+  phaser.setParameters(params);
+  phaser.setInputSource(p.source);
+  phaser.setInputTarget(p.target);
+  const Timing timing = timedAlign(phaser);
+  result = phaser.getResult();
+  return timing;
+}
+
+/** Fused against range-only aligns, alternated per pair: their stages, the median time
+ *  ratio and the pairs whose estimate or claim differs (over 0.05 deg or 1 cm). */
+void compareFusion(const std::vector<Pair>& pairs, double unit)
+{
+  std::vector<Timing> fused_runs, range_runs;
+  std::vector<double> ratios;
+  int moved = 0, claims = 0;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    pcl::phaser::PhaserResult fused, range;
+    if (k % 2 == 1)
+      range_runs.push_back(
+          alignWithChannels(pairs[k], pcl::phaser::CHANNEL_RANGE, range));
+    fused_runs.push_back(alignWithChannels(pairs[k], ~0u, fused));
+    if (k % 2 == 0)
+      range_runs.push_back(
+          alignWithChannels(pairs[k], pcl::phaser::CHANNEL_RANGE, range));
+    ratios.push_back(fused_runs.back().ms / range_runs.back().ms);
+    const Eigen::Matrix4d d = fused.transformation.inverse() * range.transformation;
+    const double deg = Eigen::AngleAxisd(d.topLeftCorner<3, 3>()).angle() * 180 / M_PI;
+    moved += deg > 0.05 || d.topRightCorner<3, 1>().norm() > 0.01;
+    claims += fused.converged != range.converged;
+  }
+  std::printf(
+      "\nFused (range and intensity, the default) against range only (channels = "
+      "range), alternated per pair:\n\n");
+  printHeader();
+  printRow("2, fresh, fused", fused_runs, unit);
+  printRow("2, fresh, range only", range_runs, unit);
+  std::printf(
+      "\nfused / range only (median over the pairs): %.3f; estimates apart (over "
+      "0.05 deg or 1 cm) on %d of %zu pairs, claims differ on %d\n",
+      median(ratios), moved, pairs.size(), claims);
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -163,6 +227,10 @@ int main(int argc, char** argv)
     std::vector<Timing> warm, unused;
     timePairs({pairs.front()}, 2, warm, unused); // tables, plans, pool
   }
+  if (pcl::console::find_switch(argc, argv, "-fusion")) {
+    compareFusion(pairs, before);
+    return 0;
+  }
   std::vector<Timing> fresh[2], cached[2];
   for (int threads : {1, 2})
     timePairs(pairs, threads, fresh[threads - 1], cached[threads - 1]);
@@ -174,10 +242,7 @@ int main(int argc, char** argv)
               "ms after (units: their mean).\nMedians over the pairs, ms / FFT units; "
               "SO(3) includes the orientation histograms, sampling the SHT.\n\n",
               pairs.size(), file.c_str(), before, after);
-  std::printf(
-      "| threads, target | total | target prep | sampling | SO(3) | refinement | "
-      "translation | verification | other | minor page faults |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+  printHeader();
   printRow("1, fresh", fresh[0], unit);
   printRow("1, cached", cached[0], unit);
   printRow("2, fresh", fresh[1], unit);
@@ -189,5 +254,6 @@ int main(int argc, char** argv)
               "two aligns in two threads of one process (1 engine thread each) / the "
               "same two in series (median over %zu couples): %.2f\n",
               median(speedup), pairs.size() / 2, ratio);
+  compareFusion(pairs, unit);
   return 0;
 }

@@ -170,17 +170,18 @@ struct CommandLine : std::map<std::string, std::string> {
   }
 };
 
-/** \brief Collects \a argv into \a line: the engine options, the tool's \a switches
- *  and \a valued options, each once, and the files. \return empty, or the problem */
+/** \brief Collects \a argv into \a line: the engine options (unless \a engine is
+ *  false: a tool that runs no align), the tool's \a switches and \a valued options,
+ *  each once, and the files. \return empty, or the problem */
 inline std::string collectArguments(int argc, char** argv,
                                     const std::set<std::string>& switches,
                                     const std::set<std::string>& valued,
-                                    CommandLine& line)
+                                    CommandLine& line, bool engine = true)
 {
   std::string error;
   for (int i = 1; i < argc && error.empty(); ++i) {
     const std::string name = argv[i];
-    const int k = findEngineOption(name);
+    const int k = engine ? findEngineOption(name) : -1;
     const bool has_value = k >= 0 || valued.count(name) > 0;
     if (!has_value && !switches.count(name)) {
       if (name.size() > 1 && name[0] == '-')

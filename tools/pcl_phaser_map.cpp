@@ -8,6 +8,7 @@
  */
 #include "batch_pairs.h"
 #include "cloud_reading.h"
+#include "engine_options.h"
 #include "map_builder.h"
 
 #include <cmath>
@@ -41,23 +42,31 @@ int usage(const char* name)
 
 int main(int argc, char** argv)
 {
-  if (argc != 4 && argc != 6)
-    return usage(argv[0]);
+  pcl::phaser::CommandLine line;
+  std::string error =
+      pcl::phaser::collectArguments(argc, argv, {}, {"--voxel"}, line, false);
   double voxel = 0.1;
-  if (argc == 6) {
+  std::string text;
+  if (error.empty() && line.files.size() != 3)
+    error = "expected SCANS, POSES and OUT.pcd";
+  else if (error.empty() && line.value("--voxel", text)) {
     char* end = nullptr;
-    voxel = std::strtod(argv[5], &end);
-    if (std::string(argv[4]) != "--voxel" || *end != '\0' || !(voxel >= 0.0) ||
-        !std::isfinite(voxel))
-      return usage(argv[0]);
+    voxel = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !(voxel >= 0.0) || !std::isfinite(voxel))
+      error = "Invalid --voxel '" + text + "': expected meters >= 0";
   }
+  if (!error.empty())
+    return std::fprintf(stderr, "Error: %s\n", error.c_str()), usage(argv[0]);
+  const std::string& scans = line.files[0];
+  const std::string& poses_file = line.files[1];
+  const std::string& out = line.files[2];
   std::vector<std::string> names, paths;
   std::vector<Eigen::Matrix4d> poses;
-  std::string error = pcl::phaser::batch::readScanList(argv[1], names, paths);
+  error = pcl::phaser::batch::readScanList(scans, names, paths);
   if (error.empty())
-    error = pcl::phaser::batch::readPoses(argv[2], poses);
+    error = pcl::phaser::batch::readPoses(poses_file, poses);
   if (error.empty() && poses.size() != paths.size())
-    error = "'" + std::string(argv[2]) + "' holds " + std::to_string(poses.size()) +
+    error = "'" + poses_file + "' holds " + std::to_string(poses.size()) +
             " poses for " + std::to_string(paths.size()) + " scans";
   if (!error.empty())
     return std::fprintf(stderr, "Error: %s\n", error.c_str()), kInput;
@@ -71,9 +80,9 @@ int main(int argc, char** argv)
     map.add(scan, poses[i]);
   }
   const auto cloud = map.cloud();
-  if (!pcl::phaser::saveCloud(argv[3], *cloud, &error))
+  if (!pcl::phaser::saveCloud(out, *cloud, &error))
     return std::fprintf(stderr, "Error: %s\n", error.c_str()), kOutput;
   std::printf("%zu scans, %zu points -> %zu map points (voxel %g m): %s\n",
-              paths.size(), read, cloud->size(), voxel, argv[3]);
+              paths.size(), read, cloud->size(), voxel, out.c_str());
   return 0;
 }

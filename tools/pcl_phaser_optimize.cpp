@@ -9,6 +9,7 @@
  */
 #include "batch_pairs.h"
 #include "batch_records.h"
+#include "engine_options.h"
 #include "pose_graph.h"
 #include "trajectory_plot.h"
 
@@ -76,40 +77,35 @@ bool parseDrift(const std::string& text, Options& o)
          std::isfinite(o.drift_fraction) && o.drift_fraction > -1.0;
 }
 
-bool parse(int argc, char** argv, Options& o)
+/** \a argv into \a o; empty, or the problem. */
+std::string parse(int argc, char** argv, Options& o)
 {
-  const std::map<std::string, graph::Loss> losses = {{"none", graph::Loss::None},
-                                                     {"huber", graph::Loss::Huber},
-                                                     {"cauchy", graph::Loss::Cauchy}};
-  std::vector<std::string> positional;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const bool valued =
-        a == "--png" || a == "--loss" || a == "--reference" || a == "--drift";
-    if (valued && i + 1 >= argc)
-      return false;
-    if (a == "--png")
-      o.png = argv[++i];
-    else if (a == "--reference")
-      o.reference = argv[++i];
-    else if (a == "--drift") {
-      if (!parseDrift(argv[++i], o))
-        return false;
-    } else if (a == "--loss") {
-      const auto it = losses.find(argv[++i]);
-      if (it == losses.end())
-        return false;
-      o.loss = it->second;
-    } else if (a.rfind("-", 0) == 0)
-      return false;
+  static const std::map<std::string, graph::Loss> losses = {
+      {"none", graph::Loss::None},
+      {"huber", graph::Loss::Huber},
+      {"cauchy", graph::Loss::Cauchy}};
+  pcl::phaser::CommandLine line;
+  std::string error = pcl::phaser::collectArguments(
+      argc, argv, {}, {"--png", "--loss", "--reference", "--drift"}, line, false);
+  std::string text;
+  if (error.empty() && line.files.size() != 2)
+    error = "expected GRAPH.g2o and OUT_POSES.txt";
+  else if (error.empty() && line.value("--drift", text) && !parseDrift(text, o))
+    error = "Invalid --drift '" + text + "': expected DEG,FRACTION, FRACTION > -1";
+  else if (error.empty() && line.value("--loss", text)) {
+    const auto it = losses.find(text);
+    if (it == losses.end())
+      error = "Invalid --loss '" + text + "': expected none, huber or cauchy";
     else
-      positional.push_back(a);
+      o.loss = it->second;
   }
-  if (positional.size() != 2)
-    return false;
-  o.graph = positional[0];
-  o.out = positional[1];
-  return true;
+  if (!error.empty())
+    return error;
+  line.value("--png", o.png);
+  line.value("--reference", o.reference);
+  o.graph = line.files[0];
+  o.out = line.files[1];
+  return {};
 }
 
 std::vector<Eigen::Vector2d> path(const std::map<int, Eigen::Isometry3d>& poses)
@@ -168,8 +164,8 @@ std::string draw(const Options& o, const graph::PoseGraph& before,
 int main(int argc, char** argv)
 {
   Options o;
-  if (!parse(argc, argv, o))
-    return usage(argv[0]);
+  if (const std::string error = parse(argc, argv, o); !error.empty())
+    return std::fprintf(stderr, "Error: %s\n", error.c_str()), usage(argv[0]);
   graph::PoseGraph g;
   if (const std::string error = graph::readG2o(o.graph, g); !error.empty())
     return std::fprintf(stderr, "Error: %s\n", error.c_str()), kInput;

@@ -5,12 +5,15 @@
  * Translation stage: grid sizing and voxelization (reference-implementation-notes.md
  * section 4 and the bugs listed there).
  */
+#include "spatial/grid_frame.h"
 #include "spatial_test_support.h"
 #include "support/error.h"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <thread>
 
 using namespace pcl::phaser;
@@ -226,4 +229,30 @@ TEST(SpatialVoxelize, BadArgumentsThrow)
   bad = grid;
   bad.voxel_size = 0.0;
   EXPECT_THROW(voxelize(bad, points), InvalidArgument);
+}
+
+// A 40 x 10 m strip turned 30 deg about z: the grid frame turns it back (to 0.05 deg,
+// up to the quarter turns that give the same box) and keeps z.
+TEST(GridFrame, TurnsAStripOntoTheGridAxes)
+{
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  Eigen::Matrix3Xd strip(3, 5000);
+  for (Eigen::Index i = 0; i < strip.cols(); ++i)
+    strip.col(i) << 40.0 * u(rng), 10.0 * u(rng), 3.0 * u(rng);
+  const double turn = 30.0 * M_PI / 180.0;
+  const Eigen::Matrix3d Q = Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ()).matrix();
+  const Eigen::Matrix3d A = detail::gridAlignedYaw(Q * strip);
+  const Eigen::Matrix3d D = A * Q; // a quarter turn about z, or none
+  EXPECT_NEAR(D(2, 2), 1.0, 1e-12);
+  const double residual =
+      std::fmod(std::atan2(D(1, 0), D(0, 0)) + 2.0 * M_PI, M_PI / 2);
+  EXPECT_LT(std::min(residual, M_PI / 2 - residual) * 180.0 / M_PI, 0.05);
+  // Already aligned, a disc (no yaw shrinks its box by 1 %), too few points: none.
+  EXPECT_TRUE(detail::gridAlignedYaw(strip).isIdentity(0.0));
+  Eigen::Matrix3Xd disc(3, 3600);
+  for (Eigen::Index i = 0; i < disc.cols(); ++i)
+    disc.col(i) << std::cos(i * M_PI / 1800), std::sin(i * M_PI / 1800), 0.0;
+  EXPECT_TRUE(detail::gridAlignedYaw(disc).isIdentity(0.0));
+  EXPECT_TRUE(detail::gridAlignedYaw(strip.leftCols(2)).isIdentity(0.0));
 }

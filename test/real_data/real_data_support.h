@@ -9,6 +9,8 @@
 #include "../registration/test_data.h"
 #include "cloud_reading.h"
 
+#include <pcl_phaser/phaser_registration.h>
+
 #include <pcl/filters/filter.h>
 #include <pcl/point_cloud.h>
 
@@ -32,6 +34,22 @@ typename pcl::PointCloud<PointT>::Ptr loadFiniteCloud(const std::string& relativ
   pcl::Indices kept;
   pcl::removeNaNFromPointCloud(*cloud, *cloud, kept);
   return cloud;
+}
+
+/** \brief One align of \a source onto \a target with defaults and 2 threads: what it
+ *  found (PhaserRegistration::getResult()). */
+template <typename PointT>
+pcl::phaser::PhaserResult
+alignWithDefaults(const typename pcl::PointCloud<PointT>::ConstPtr& source,
+                  const typename pcl::PointCloud<PointT>::ConstPtr& target)
+{
+  pcl::PhaserRegistration<PointT, PointT> phaser;
+  phaser.setNumberOfThreads(2);
+  phaser.setInputSource(source);
+  phaser.setInputTarget(target);
+  pcl::PointCloud<PointT> aligned;
+  phaser.align(aligned);
+  return phaser.getResult();
 }
 
 } // namespace test

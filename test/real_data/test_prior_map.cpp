@@ -14,6 +14,8 @@
 
 #include <pcl_phaser/phaser_registration.h>
 
+#include <pcl/common/transforms.h>
+
 #include <Eigen/Geometry>
 
 #include <cmath>
@@ -101,6 +103,45 @@ TEST(PriorMap, KittiScanDoesNotConverge)
   phaser.align(aligned);
   EXPECT_TRUE(phaser.getResult().error.empty()) << phaser.getResult().error;
   EXPECT_FALSE(phaser.hasConverged());
+}
+
+// A scan 200 m from its frame origin, and the same scan turned 35 deg about that
+// origin: the engine turns each onto its smallest box, so both give the same pose in
+// their own axes, and the second's covariance is the first's turned with it (the
+// covariance is of left perturbations in the target frame).
+TEST(PriorMap, SiteFrameYawTurnsPoseAndCovariance)
+{
+  PCL_PHASER_REQUIRE_DATA(kDir + "/full36.pcd");
+  const Cloud::Ptr source =
+      pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + "/full18.pcd");
+  const Cloud::Ptr near =
+      pcl::phaser::test::loadFiniteCloud<pcl::PointXYZI>(kDir + "/full36.pcd");
+  const Eigen::Affine3f shift(Eigen::Translation3f(200.0f, 0.0f, 0.0f));
+  const Eigen::Affine3f yaw(
+      Eigen::AngleAxisf(35.0f * M_PI / 180.0f, Eigen::Vector3f::UnitZ()));
+  Cloud::Ptr moved(new Cloud), turned(new Cloud);
+  pcl::transformPointCloud(*near, *moved, shift);
+  pcl::transformPointCloud(*near, *turned, yaw * shift);
+  const pcl::phaser::PhaserResult a =
+      pcl::phaser::test::alignWithDefaults<pcl::PointXYZI>(source, moved);
+  const pcl::phaser::PhaserResult b =
+      pcl::phaser::test::alignWithDefaults<pcl::PointXYZI>(source, turned);
+  ASSERT_TRUE(a.converged && b.converged);
+  const Eigen::Matrix4d Q = (yaw.matrix()).cast<double>();
+  const Eigen::Matrix4d expected = Q * a.transformation;
+  const Eigen::Matrix3d dR = expected.topLeftCorner<3, 3>().transpose() *
+                             b.transformation.topLeftCorner<3, 3>();
+  EXPECT_LT(Eigen::AngleAxisd(dR).angle() * 180.0 / M_PI, 0.1);
+  const Eigen::Vector3d dt =
+      expected.topRightCorner<3, 1>() - b.transformation.topRightCorner<3, 1>();
+  EXPECT_LT(dt.norm(), 0.02);
+  Eigen::Matrix<double, 6, 6> B = Eigen::Matrix<double, 6, 6>::Zero();
+  B.topLeftCorner<3, 3>() = Q.topLeftCorner<3, 3>();
+  B.bottomRightCorner<3, 3>() = Q.topLeftCorner<3, 3>();
+  const Eigen::Matrix<double, 6, 6> turned_back = B * a.covariance * B.transpose();
+  EXPECT_LT((b.covariance - turned_back).norm(), 0.02 * b.covariance.norm());
+  // Unturned, the covariances differ: the check above can fail.
+  EXPECT_GT((b.covariance - a.covariance).norm(), 0.08 * b.covariance.norm());
 }
 
 } // namespace

@@ -98,14 +98,10 @@ Cloud::Ptr quarterSector(const Cloud& full, double center_deg)
 Eigen::Matrix4d align(const Cloud::ConstPtr& source, const Cloud::ConstPtr& target,
                       bool& converged, std::string* why = nullptr)
 {
-  pcl::PhaserRegistration<pcl::PointXYZI, pcl::PointXYZI> phaser;
-  phaser.setNumberOfThreads(2);
-  phaser.setInputSource(source);
-  phaser.setInputTarget(target);
-  Cloud aligned;
-  phaser.align(aligned);
-  converged = phaser.hasConverged();
-  const pcl::phaser::PhaserDiagnostics& diagnostics = phaser.getResult().diagnostics;
+  const pcl::phaser::PhaserResult result =
+      pcl::phaser::test::alignWithDefaults<pcl::PointXYZI>(source, target);
+  converged = result.converged;
+  const pcl::phaser::PhaserDiagnostics& diagnostics = result.diagnostics;
   if (why)
     *why = "inlier fraction " +
            std::to_string(diagnostics.verification.inlier_fraction) +
@@ -115,7 +111,7 @@ Eigen::Matrix4d align(const Cloud::ConstPtr& source, const Cloud::ConstPtr& targ
            ", rank " + std::to_string(diagnostics.verification.rank) + " (runner-up " +
            std::to_string(diagnostics.runner_up_rank) + ", difference error " +
            std::to_string(diagnostics.runner_up_error) + ")";
-  return phaser.getFinalTransformation().cast<double>();
+  return result.transformation.cast<float>().cast<double>();
 }
 
 /** \a source against \a target with defaults: within 5 deg / 0.6 m of \a truth, and

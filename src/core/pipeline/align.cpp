@@ -83,6 +83,33 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& a)
       .finished();
 }
 
+/** \a pose and what \a result holds of it, found against the target model turned by
+ *  \a axes, turned back to the target's axes. */
+void turnBack(const Eigen::Matrix3d& axes, RigidPose& pose, PhaserResult& result)
+{
+  if (axes.isIdentity(0.0))
+    return;
+  const Eigen::Matrix3d back = axes.transpose();
+  pose.R = back * pose.R;
+  pose.t = back * pose.t;
+  PhaserDiagnostics& diagnostics = result.diagnostics;
+  for (Hypothesis& h : diagnostics.hypotheses) {
+    h.rotation = back * h.rotation;
+    h.translation = back * h.translation;
+  }
+  const Eigen::Quaterniond q_back(back);
+  for (Eigen::Vector4d& s : diagnostics.rotation_samples) {
+    const Eigen::Quaterniond q = q_back * Eigen::Quaterniond(s[0], s[1], s[2], s[3]);
+    s = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+  }
+  Eigen::Matrix<double, 6, 6> B = Eigen::Matrix<double, 6, 6>::Zero();
+  B.topLeftCorner<3, 3>() = back;
+  B.bottomRightCorner<3, 3>() = back;
+  result.fit_covariance = B * result.fit_covariance * B.transpose();
+  result.translation_covariance =
+      back * result.translation_covariance * back.transpose();
+}
+
 /** Verified and, about centroids, a distinct peak (half the score with a clear overlap:
  *  scans meters apart give wider peaks). */
 bool converged(const PhaserResult& result, const PhaserParameters& params)
@@ -114,16 +141,18 @@ PhaserResult alignChecked(const Target& target, const SourceCloud& source,
       allowed);
   PhaserResult result;
   Eigen::Vector3d target_center;
+  Eigen::Matrix3d axes;
   const std::shared_ptr<const detail::TargetModel> model =
-      detail::targetModel(target, center, settings, allowed.region, target_center,
+      detail::targetModel(target, center, settings, allowed.region, target_center, axes,
                           result.diagnostics.times.target);
   const Eigen::Vector3d source_center =
       center == ProjectionCenter::Centroid
           ? Eigen::Vector3d(moved.rowwise().mean())
           : Eigen::Vector3d(guess.topRightCorner<3, 1>());
   moved.colwise() -= source_center;
-  const RigidPose pose = detail::estimateCentered(*model, moved, settings, allowed,
-                                                  source.channels, result);
+  RigidPose pose = detail::estimateCentered(*model, moved, settings, allowed,
+                                            source.channels, result);
+  turnBack(axes, pose, result);
   result.projection_center = center;
   result.transformation =
       callerFrame(pose.R, pose.t, source_center, target_center, guess);

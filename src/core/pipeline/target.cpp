@@ -7,6 +7,7 @@
  */
 #include "pipeline/projection_center.h"
 #include "pipeline/target.h"
+#include "spatial/grid_frame.h"
 
 #include <mutex>
 
@@ -21,6 +22,8 @@ struct Target::Cache {
   std::shared_ptr<const detail::TargetModel> model;
   ProjectionCenter center = ProjectionCenter::SensorOrigin; ///< of model
   Eigen::Vector3d offset = Eigen::Vector3d::Zero(); ///< the projection center of model
+  /** The axes of model: its points are axes (p - offset). */
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
   std::optional<detail::SearchRegion> region; ///< model is of the points in it only
 };
 
@@ -109,7 +112,7 @@ StageMode stageMode(const Target& target, const Eigen::Matrix3Xd& moved,
 std::shared_ptr<const TargetModel>
 targetModel(const Target& target, ProjectionCenter center,
             const StageSettings& settings, const std::optional<SearchRegion>& region,
-            Eigen::Vector3d& offset, double& target_ms)
+            Eigen::Vector3d& offset, Eigen::Matrix3d& axes, double& target_ms)
 {
   auto& cache = TargetAccess::cache(target);
   std::lock_guard<std::mutex> lock(cache.mutex);
@@ -126,17 +129,24 @@ targetModel(const Target& target, ProjectionCenter center,
       Eigen::Matrix3Xd points = target.points();
       // About a far origin the target would be a small cap of the sphere, and the true
       // shift would lie outside its translation grid.
-      cache.offset = center == ProjectionCenter::Centroid || !targetOriginOnData(target)
+      const bool site_frame = !targetOriginOnData(target);
+      cache.offset = center == ProjectionCenter::Centroid || site_frame
                          ? Eigen::Vector3d(points.rowwise().mean())
                          : Eigen::Vector3d::Zero();
       points.colwise() -= cache.offset;
+      cache.axes = site_frame ? gridAlignedYaw(points) : Eigen::Matrix3d::Identity();
+      if (site_frame)
+        points = cache.axes * points;
       cache.model = prepareTarget(points, settings, TargetAccess::channels(target));
     }
+    if (region)
+      cache.axes = Eigen::Matrix3d::Identity();
     cache.center = center;
     cache.region = region;
     target_ms = cache.model->preparation_ms;
   }
   offset = cache.offset;
+  axes = cache.axes;
   return cache.model;
 }
 

@@ -41,14 +41,16 @@ StageMode stageMode(const Target& target, const Eigen::Matrix3Xd& moved,
                     const Eigen::Matrix4d& guess, ProjectionCenter center,
                     bool map_target);
 
-/** The target model, cached or prepared (its time into \a target_ms), and its center
- *  into \a offset: with a \a region, of the points a sensor there could see, about the
- *  region's center; else the centroid about centroids or when the frame origin is off
- *  the data, else the origin. */
+/** The target model, cached or prepared (its time into \a target_ms), its center
+ *  into \a offset and its axes into \a axes (its points are axes (p - offset)): with a
+ *  \a region, of the points a sensor there could see, about the region's center; else
+ *  the centroid about centroids or when the frame origin is off the data, else the
+ *  origin. A target whose frame origin is off its data (a map in a site frame) is
+ *  turned about z onto its smallest box (gridAlignedYaw). */
 std::shared_ptr<const TargetModel>
 targetModel(const Target& target, ProjectionCenter center,
             const StageSettings& settings, const std::optional<SearchRegion>& region,
-            Eigen::Vector3d& offset, double& target_ms);
+            Eigen::Vector3d& offset, Eigen::Matrix3d& axes, double& target_ms);
 
 } // namespace detail
 } // namespace pcl::phaser
