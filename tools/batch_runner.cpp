@@ -7,7 +7,6 @@
 #include "batch_runner.h"
 #include "engine_options.h"
 
-#include <pcl_phaser/core/warm_up.h>
 
 #include <pcl/console/print.h>
 
@@ -184,27 +183,9 @@ void runJob(Run& run)
     }
 }
 
-/** \brief The engine's first align of a process touches its memory anew (most of what
- *  it costs beyond the next fresh align: doc/benchmarks.md): warm it up on a thread
- *  while the first pair is read, keeping the memory of one align for the next. */
-void warmUpWhileReading(Run& run)
-{
-  if (run.work.empty())
-    return;
-  WarmUpOptions options;
-  options.keep_memory = true;
-  std::thread warm_up([&run, options] { warmUp(run.params, options); });
-  const Pair& first = run.list.pairs[run.work[0][0]];
-  std::string ignored; // a load that fails is reported with its pair
-  run.clouds.get(first.target_path, ignored);
-  run.clouds.get(first.source_path, ignored);
-  warm_up.join();
-}
-
 /** \brief Run the work on \a jobs threads (the calling one among them). */
 void runJobs(Run& run, int jobs)
 {
-  warmUpWhileReading(run);
   std::vector<std::thread> others;
   for (int j = 1; j < jobs; ++j)
     others.emplace_back([&run] { runJob(run); });
