@@ -28,7 +28,7 @@ using Record = JsonObject;
 
 /** \brief The record of a pair that was aligned: pair, pairs, source, target,
  *  source_id, target_id, status "ok", transformation (4x4 row-major), converged, the
- *  fields of visitResultFields() (result_fields.h, as `pcl_phaser_align --json` writes
+ *  fields of visitResultFields() (core/result.h, as `pcl_phaser_align --json` writes
  *  them) and time_ms. Numbers round-trip exactly. */
 Record alignedRecord(const Pair& pair, std::size_t pairs, const PhaserResult& result,
                      double time_ms);

@@ -3,12 +3,12 @@
 //
 /** \file result_json.h
  * \brief JSON members of the tools' outputs, `pcl_phaser_align --json` and the records
- * of `pcl_phaser_batch` alike: a result's fields (core/result_fields.h) and the rest.
+ * of `pcl_phaser_batch` alike: a result's fields (visitResultFields, core/result.h) and the rest.
  */
 #pragma once
 
 #include <pcl_phaser/core/parameters.h>
-#include <pcl_phaser/core/result_fields.h>
+#include <pcl_phaser/core/result.h>
 
 #include <Eigen/Core>
 

@@ -8,7 +8,7 @@
  */
 #include "bindings.h"
 
-#include <pcl_phaser/core/result_fields.h>
+#include <pcl_phaser/core/result.h>
 
 #include <type_traits>
 #include <vector>

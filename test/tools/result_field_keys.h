@@ -9,7 +9,7 @@
  */
 #pragma once
 
-#include <pcl_phaser/core/result_fields.h>
+#include <pcl_phaser/core/result.h>
 
 #include <string>
 #include <vector>

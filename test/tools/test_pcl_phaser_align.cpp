@@ -300,7 +300,7 @@ TEST_F(PclPhaserAlign, JsonIsOneObjectWithTheKeys)
   Eigen::Matrix4d T, T_icp;
   ASSERT_NO_FATAL_FAILURE(checkJsonRun(r, &truth_, j, T));
   EXPECT_TRUE(j.get("converged")->boolean);
-  // The result's fields, the keys and order of the batch's records (result_fields.h).
+  // The result's fields, the keys and order of the batch's records (visitResultFields).
   const auto first = std::find_if(j.object.begin(), j.object.end(), [](const auto& m) {
     return m.first == "covariance";
   });
