@@ -2,41 +2,21 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * pcl_phaser_align_benchmark: time per PhaserRegistration::align on a LiDAR pair at the
- * defaults, with 1 and 2 threads, with a fresh and with a cached target, broken down by
- * stage. Without files it uses the simulated demo pair (64 beams, ~113k points each).
- *
- *   pcl_phaser_align_benchmark [SOURCE TARGET] [-r repetitions] [-b bandwidth]
- *                              [-range_only] [-plain] [-busy]
- *                              [-orientation_candidates N] [-max_tilt DEG]
- *                              [-first threads [-warm_up [-keep_memory]]]
- * -range_only switches the intensity channel off, so the two runs show what fusing one
- * extra channel costs per stage; -plain refines the rotation on plain C only, not also
- * on the energy-normalized correlation (PhaserParameters::normalized_refinement =
- * false); -busy keeps one core busy with a spinning child process during the aligns (as
- * `yes > /dev/null` would: a robot running other nodes); -orientation_candidates sets
- * PhaserParameters::orientation_candidates (default 10). Timings are wall-clock; every
- * stage is printed in ms and in FFT units (one 128^3 r2c FFT on one thread, measured
- * first), and the first align of each configuration (plans and tables built) is printed
- * apart. -first runs the first align of the process instead, before anything else has
- * run (the yardstick is measured after it: its buffers would warm the allocator), then
- * the next fresh and the cached aligns, with the minor page faults of each and the
- * first transformation in full (doc/benchmarks.md, "First align in a process");
- * -warm_up runs pcl::phaser::warmUp on a thread while the clouds are read (as a batch
- * tool would) and prints its time and the reading's, -keep_memory sets its
- * WarmUpOptions::keep_memory. -max_tilt DEG (or --max-tilt) compares, with 2 threads
- * and a cached target, the full search with the gravity prior
- * PhaserParameters::max_tilt_deg = DEG, their aligns alternating, and prints the ratio.
+ * pcl_phaser_bench align: the time of PhaserRegistration::align on a pair (or the
+ * simulated demo pair), by stage, with 1 and 2 threads, fresh and cached target, in ms
+ * and FFT units; --first: the first align of a process; --max-tilt: the gravity prior
+ * against the full search (the options: alignSubcommand()).
  */
 #include "bench_timing.h"
 #include "cloud_reading.h"
 #include "fft_yardstick.h"
+#include "methods.h"
 #include "scan_simulator.h"
+#include "subcommands.h"
 
 #include <pcl_phaser/core/warm_up.h>
 #include <pcl_phaser/phaser_registration.h>
 
-#include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 #include <pcl/filters/filter.h>
 #include <pcl/point_types.h>
@@ -179,42 +159,33 @@ void firstInProcess(const Cloud::Ptr& source, const Cloud::Ptr& target, int thre
   std::printf("\n");
 }
 
-bool loadPair(int argc, char** argv, Cloud::Ptr& source, Cloud::Ptr& target,
-              std::string& name)
+/** The pair of \a files (SOURCE TARGET), or the simulated demo pair without files. */
+bool loadPair(const std::vector<std::string>& files, Cloud::Ptr& source,
+              Cloud::Ptr& target, std::string& name)
 {
-  const std::vector<int> files = pcl::console::parse_file_extension_argument(
-      argc, argv, std::vector<std::string>{".pcd", ".ply", ".bin"});
-  source = pcl::make_shared<Cloud>();
-  target = pcl::make_shared<Cloud>();
-  if (files.size() >= 2) {
-    std::string error;
-    if (!pcl::phaser::loadCloud(argv[files[0]], *source, &error) ||
-        !pcl::phaser::loadCloud(argv[files[1]], *target, &error)) {
-      pcl::console::print_error("%s\n", error.c_str());
-      return false;
-    }
-    pcl::Indices kept;
-    pcl::removeNaNFromPointCloud(*source, *source, kept);
-    pcl::removeNaNFromPointCloud(*target, *target, kept);
-    name = std::string(argv[files[0]]) + " -> " + argv[files[1]];
-    return true;
+  if (files.size() == 2) {
+    source = loadFiniteScan(files[0]);
+    target = loadFiniteScan(files[1]);
+    name = files[0] + " -> " + files[1];
+    return source && target; // the loader said why not
   }
   const pcl::phaser::ScanPair pair = pcl::phaser::makeDemoPair(1);
-  *source = pair.source;
-  *target = pair.target;
+  source = pcl::make_shared<Cloud>(pair.source);
+  target = pcl::make_shared<Cloud>(pair.target);
   name = "simulated demo pair (seed 1)";
   return true;
 }
 
-/** -first: reads the pair, with -warm_up while pcl::phaser::warmUp runs on a thread,
+/** --first: reads the pair, with --warm-up while pcl::phaser::warmUp runs on a thread,
  *  then firstInProcess. */
-int firstAlignRun(int argc, char** argv, const pcl::phaser::PhaserParameters& params,
-                  int reps, bool range_only)
+int firstAlignRun(const BenchArguments& args,
+                  const pcl::phaser::PhaserParameters& params, int reps,
+                  bool range_only)
 {
   pcl::phaser::WarmUpOptions options;
   options.channels = range_only ? 0 : 1;
-  options.keep_memory = pcl::console::find_switch(argc, argv, "-keep_memory");
-  const bool warm = pcl::console::find_switch(argc, argv, "-warm_up");
+  options.keep_memory = args.has("--keep-memory");
+  const bool warm = args.has("--warm-up");
   double warm_ms = 0.0;
   std::string warm_error;
   const auto start = Clock::now();
@@ -226,7 +197,7 @@ int firstAlignRun(int argc, char** argv, const pcl::phaser::PhaserParameters& pa
     });
   Cloud::Ptr source, target;
   std::string name;
-  const bool loaded = loadPair(argc, argv, source, target, name);
+  const bool loaded = loadPair(args.files(), source, target, name);
   const double load_ms = msSince(start);
   if (warm)
     warm_up.join();
@@ -248,7 +219,7 @@ int firstAlignRun(int argc, char** argv, const pcl::phaser::PhaserParameters& pa
   return 0;
 }
 
-/** One result's row of the -max_tilt table: median total and stages (ms / FFT units),
+/** One result's row of the --max-tilt table: median total and stages (ms / FFT units),
  *  tilt of the estimate (deg), converged. */
 void printTiltRow(const char* label, const Row& r, double unit)
 {
@@ -264,7 +235,7 @@ void printTiltRow(const char* label, const Row& r, double unit)
       r.estimate.converged ? "yes" : "no");
 }
 
-/** -max_tilt: the full search and the prior, 2 threads, cached targets, \a reps aligns
+/** --max-tilt: the full search and the prior, 2 threads, cached targets, \a reps aligns
  *  of each alternating (both see the same load); medians and their ratio. */
 void compareTilt(const Cloud::Ptr& source, const Cloud::Ptr& target, int reps,
                  pcl::phaser::PhaserParameters params, bool range_only, double unit)
@@ -338,36 +309,24 @@ void printStageTable(const Cloud::Ptr& source, const Cloud::Ptr& target, int rep
     }
 }
 
-} // namespace
-
-int main(int argc, char** argv)
+/** Reads the options, the pair and the yardstick, then the stage table or the
+ *  --max-tilt comparison (or the --first run). */
+int runAlign(BenchArguments& args)
 {
-  int reps = 7;
-  pcl::phaser::PhaserParameters params; // bandwidth 64 unless -b
-  pcl::console::parse_argument(argc, argv, "-r", reps);
-  pcl::console::parse_argument(argc, argv, "-b", params.bandwidth);
-  pcl::console::parse_argument(argc, argv, "-orientation_candidates",
-                               params.orientation_candidates);
-  const bool range_only = pcl::console::find_switch(argc, argv, "-range_only");
-  const bool normalized = !pcl::console::find_switch(argc, argv, "-plain");
-  const bool busy = pcl::console::find_switch(argc, argv, "-busy");
-  if (pcl::console::parse_argument(argc, argv, "-max_tilt", params.max_tilt_deg) < 0)
-    pcl::console::parse_argument(argc, argv, "--max-tilt", params.max_tilt_deg);
-  params.normalized_refinement = normalized;
-  const std::string problem = pcl::phaser::validateParameters(params);
-  if (reps < 1 || !problem.empty()) {
-    pcl::console::print_error("%s\n",
-                              reps < 1 ? "repetitions must be >= 1" : problem.c_str());
-    return 1;
-  }
-  int first_threads = 0;
-  if (pcl::console::parse_argument(argc, argv, "-first", first_threads) >= 0) {
-    params.num_threads = first_threads;
-    return firstAlignRun(argc, argv, params, reps, range_only);
-  }
+  const int reps = static_cast<int>(args.integer("--reps", 7));
+  pcl::phaser::PhaserParameters params = args.engine(0); // bandwidth 64 unless given
+  const bool range_only = args.has("--range-only"), busy = args.has("--busy");
+  const bool normalized = params.normalized_refinement;
+  args.check(reps >= 1, "--reps: >= 1");
+  args.check(args.files().empty() || args.files().size() == 2,
+             "expected SOURCE TARGET or no files");
+  if (!args.ok())
+    return args.fail();
+  if (args.has("--first"))
+    return firstAlignRun(args, params, reps, range_only);
   Cloud::Ptr source, target;
   std::string name;
-  if (!loadPair(argc, argv, source, target, name))
+  if (!loadPair(args.files(), source, target, name))
     return 2;
   const double unit = pcl::phaser::bench::fftYardstickMs();
   std::optional<BusyCore> spinner;
@@ -388,3 +347,29 @@ int main(int argc, char** argv)
   printStageTable(source, target, reps, params, range_only, unit);
   return 0;
 }
+
+} // namespace
+
+namespace pcl::phaser::bench {
+
+const Subcommand kAlign = {
+    "align",
+    "the time of one align by stage: 1 and 2 threads, fresh and cached target "
+    "(SOURCE TARGET, or the simulated demo pair); with --max-tilt DEG the gravity "
+    "prior against the full search (2 threads, cached, alternating)",
+    "[SOURCE TARGET]",
+    {{"--reps", "N", "aligns per configuration, the median printed (default 7)"},
+     {"--range-only", nullptr, "the intensity channel off: what fusing it costs"},
+     {"--busy", nullptr,
+      "one core kept busy by a spinning process (as `yes > /dev/null` would)"},
+     {"--first", nullptr,
+      "the first align of the process (with --threads' threads), then the next "
+      "fresh and cached ones, with their page faults"},
+     {"--warm-up", nullptr,
+      "with --first: pcl::phaser::warmUp on a thread while the pair is read"},
+     {"--keep-memory", nullptr, "with --warm-up: WarmUpOptions::keep_memory"}},
+    true,
+    0,
+    runAlign};
+
+} // namespace pcl::phaser::bench

@@ -2,17 +2,16 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * pcl_phaser_covariance_calibration: registers simulated LiDAR pairs (makeDemoPair,
+ * pcl_phaser_bench calibrate-covariance: registers simulated LiDAR pairs (makeDemoPair,
  * exact truth) and prints, per pair and bandwidth, the pose error and the ingredients
- * of getCovariance() as CSV. The rotation model-error scale (kRotationModelErrorScale
- * in peak_neighborhood.h) was fitted on this output, so that the real scans of
- * pcl_phaser_benchmark -study nees stay held out.
- *
- *   pcl_phaser_covariance_calibration [-seeds N] [-bandwidths 32,64,128] > sim.csv
+ * of getCovariance() as CSV. kRotationModelErrorScale (peak_neighborhood.h) was fitted
+ * on this output, so that the real scans of pcl_phaser_bench nees stay held out.
  */
 #include "cloud_reading.h"
+#include "methods.h"
 #include "protocol.h"
 #include "scan_simulator.h"
+#include "subcommands.h"
 #include "uncertainty/peak_neighborhood.h"
 
 #include <pcl_phaser/phaser_registration.h>
@@ -25,10 +24,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <random>
 #include <set>
-#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -64,49 +61,12 @@ Eigen::Vector3d centroid(const pcl::PointCloud<pcl::PointXYZI>& cloud, double ce
   return sum / static_cast<double>(cell > 0.0 ? seen.size() : cloud.size());
 }
 
-/** The command line: -seeds N, -bandwidths B1,B2,..., -scan FILE. */
+/** The command line: --seeds N, --bandwidths B1,B2,..., --scan FILE. */
 struct Arguments {
   int seeds = 30;
-  std::vector<int> bandwidths{32, 64, 128};
+  std::vector<int> bandwidths;
   std::string scan_path;
 };
-
-/** Parses the command line into \a args; false (after the usage line) on an unknown
- *  option. */
-bool parseArguments(int argc, char** argv, Arguments& args)
-{
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "-seeds"))
-      args.seeds = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "-scan"))
-      args.scan_path = argv[i + 1];
-    else if (!std::strcmp(argv[i], "-bandwidths")) {
-      args.bandwidths.clear();
-      std::stringstream list(argv[i + 1]);
-      std::string item;
-      while (std::getline(list, item, ','))
-        args.bandwidths.push_back(std::atoi(item.c_str()));
-    } else {
-      std::fprintf(stderr, "usage: %s [-seeds N] [-bandwidths 32,64,128]\n", argv[0]);
-      return false;
-    }
-  }
-  return true;
-}
-
-/** Loads the scan of -scan into \a scan, non-finite points removed; false (after the
- *  reader's message) when it cannot be read. */
-bool loadScan(const std::string& path, pcl::PointCloud<pcl::PointXYZI>& scan)
-{
-  std::string error;
-  if (!pcl::phaser::loadCloud(path, scan, &error)) {
-    std::fprintf(stderr, "%s\n", error.c_str());
-    return false;
-  }
-  pcl::Indices kept;
-  pcl::removeNaNFromPointCloud(scan, scan, kept);
-  return true;
-}
 
 /** The pair of \a seed: with a \a scan, the scan seen again from a random pose drawn
  *  from \a rng with PSNR 50 dB noise; otherwise makeDemoPair(seed). */
@@ -159,29 +119,51 @@ void registerAndPrint(int seed, int b, const Eigen::Matrix4d& truth,
   std::fflush(stdout);
 }
 
-} // namespace
-
-int main(int argc, char** argv)
+/** The CSV header, then a row per pair and bandwidth. */
+int runCalibration(pcl::phaser::bench::BenchArguments& args)
 {
-  Arguments args;
-  if (!parseArguments(argc, argv, args))
-    return 1;
+  Arguments a;
+  a.seeds = static_cast<int>(args.integer("--seeds", 30));
+  a.scan_path = args.text("--scan");
+  for (double b : args.numbers("--bandwidths", {32, 64, 128}))
+    if (args.check(b == std::floor(b) && b >= 2 && b <= 256,
+                   "--bandwidths: integers in 2..256"))
+      a.bandwidths.push_back(static_cast<int>(b));
+  if (!args.ok())
+    return args.fail();
   std::printf("seed,bandwidth,converged,score,ex,ey,ez,tx,ty,tz,"
               "r00,r01,r02,r11,r12,r22,t00,t01,t02,t11,t12,t22,"
               "px,py,pz,v1x,v1y,v1z,v4x,v4y,v4z\n");
   pcl::PointCloud<pcl::PointXYZI>::Ptr scan;
-  if (!args.scan_path.empty()) {
-    scan = pcl::make_shared<pcl::PointCloud<pcl::PointXYZI>>();
-    if (!loadScan(args.scan_path, *scan))
-      return 2;
-  }
+  if (!a.scan_path.empty() && !(scan = pcl::phaser::bench::loadFiniteScan(a.scan_path)))
+    return 2; // the loader said why
   std::mt19937 rng(1);
-  for (int seed = 1; seed <= args.seeds; ++seed) {
+  for (int seed = 1; seed <= a.seeds; ++seed) {
     const pcl::phaser::ScanPair pair = makePair(scan, seed, rng);
     auto source = pcl::make_shared<pcl::PointCloud<pcl::PointXYZI>>(pair.source);
     auto target = pcl::make_shared<pcl::PointCloud<pcl::PointXYZI>>(pair.target);
-    for (int b : args.bandwidths)
+    for (int b : a.bandwidths)
       registerAndPrint(seed, b, pair.T_target_source, source, target);
   }
   return 0;
 }
+
+} // namespace
+
+namespace pcl::phaser::bench {
+
+const Subcommand kCalibrateCovariance = {
+    "calibrate-covariance",
+    "simulated LiDAR pairs registered per bandwidth: the pose errors and the "
+    "ingredients of getCovariance() as CSV",
+    nullptr,
+    {{"--seeds", "N", "pairs, seeds 1..N (default 30)"},
+     {"--bandwidths", "L", "bandwidths (default 32,64,128)"},
+     {"--scan", "FILE",
+      "instead of makeDemoPair: the scan seen again from random poses, 50 dB "
+      "noise"}},
+    false,
+    0,
+    runCalibration};
+
+} // namespace pcl::phaser::bench

@@ -2,24 +2,15 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * pcl_phaser_loop_closure_report: judges the records of `pcl_phaser_batch --scans ...`
+ * pcl_phaser_bench loop-closure: judges the records of `pcl_phaser_batch --scans ...`
  * against the reference poses of the trajectory: per pair the reference distance and
- * overlap, the pose error, and the NEES of the error under the record's covariance;
- * then how many candidates were accepted, how many accepted edges are wrong, how many
- * candidates with a real overlap were accepted, and the covariance's calibration.
- *
- *   pcl_phaser_loop_closure_report --records R.jsonl --scans LIST --poses POSES
- *                                  [--csv pairs.csv] [--real-overlap 0.3]
- *                                  [--reference-drift DX,DY,DZ]
- *   --reference-drift removes a linear drift of the reference positions (world frame, m
- *   per scan index, the index the digits of each scan's file name give), as
- *   pcl_phaser_benchmark -study revisits -reference-drift does.
- *   pcl_phaser_loop_closure_report --yardstick     (ms of one 128^3 r2c FFT, 1 thread)
+ * overlap, the pose error and its NEES under the record's covariance; then the accepted
+ * candidates, the wrong accepted edges and the covariance's calibration.
  */
 #include "batch_pairs.h"
 #include "batch_records.h"
 #include "cloud_reading.h"
-#include "fft_yardstick.h"
+#include "subcommands.h"
 
 #include <pcl/filters/filter.h>
 #include <pcl/kdtree/kdtree_flann.h>
@@ -29,7 +20,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <limits>
 #include <map>
 #include <string>
@@ -167,14 +157,6 @@ void summarize(const std::vector<Row>& rows, double real_overlap)
       accepted, in6 / n, in_rot / n, in_trans / n, nees_sum / n);
 }
 
-const char* value(int argc, char** argv, const char* name, const char* fallback)
-{
-  for (int i = 1; i + 1 < argc; ++i)
-    if (!std::strcmp(argv[i], name))
-      return argv[i + 1];
-  return fallback;
-}
-
 /** \brief The number in a scan's file name (full120.pcd: 120), or -1. */
 int scanNumber(const std::string& name)
 {
@@ -192,21 +174,17 @@ void removeDrift(const Eigen::Vector3d& drift, const std::vector<std::string>& n
     poses[k].topRightCorner<3, 1>() -= std::max(0, scanNumber(names[k])) * drift;
 }
 
-} // namespace
-
-namespace {
-
 /** Every record judged against the reference poses; each row into \a csv_path too
  *  when given. */
 std::vector<Row> judgeRecords(const std::vector<batch::Record>& records,
                               const std::vector<std::string>& names,
                               const std::vector<std::string>& paths,
                               const std::vector<Eigen::Matrix4d>& poses,
-                              const char* csv_path)
+                              const std::string& csv_path)
 {
   std::map<std::string, Cloud::Ptr> clouds;
   std::vector<Row> rows;
-  FILE* csv = csv_path ? std::fopen(csv_path, "w") : nullptr;
+  FILE* csv = csv_path.empty() ? nullptr : std::fopen(csv_path.c_str(), "w");
   if (csv)
     std::fprintf(csv,
                  "pair,source,target,distance_m,overlap,converged,rre_deg,rte_m,nees,"
@@ -236,23 +214,19 @@ std::vector<Row> judgeRecords(const std::vector<batch::Record>& records,
   return rows;
 }
 
-} // namespace
-
-int main(int argc, char** argv)
+/** Reads the records, scans and poses, judges every record and prints the summary. */
+int runLoopClosure(pcl::phaser::bench::BenchArguments& args)
 {
-  if (argc == 2 && !std::strcmp(argv[1], "--yardstick"))
-    return std::printf("%.3f\n", pcl::phaser::bench::fftYardstickMs()), 0;
-  const char *records_path = value(argc, argv, "--records", nullptr),
-             *scans_path = value(argc, argv, "--scans", nullptr),
-             *poses_path = value(argc, argv, "--poses", nullptr),
-             *csv_path = value(argc, argv, "--csv", nullptr);
-  const double real_overlap = std::atof(value(argc, argv, "--real-overlap", "0.3"));
-  if (!records_path || !scans_path || !poses_path)
-    return std::fprintf(stderr,
-                        "usage: %s --records R.jsonl --scans LIST --poses POSES "
-                        "[--csv F] [--real-overlap 0.3] | --yardstick\n",
-                        argv[0]),
-           1;
+  const std::string records_path = args.text("--records"),
+                    scans_path = args.text("--scans"),
+                    poses_path = args.text("--poses");
+  const double real_overlap = args.number("--real-overlap", 0.3);
+  const std::vector<double> d = args.numbers("--reference-drift", {0, 0, 0});
+  args.check(!records_path.empty() && !scans_path.empty() && !poses_path.empty(),
+             "--records, --scans and --poses are required");
+  args.check(d.size() == 3, "--reference-drift: three numbers DX,DY,DZ");
+  if (!args.ok())
+    return args.fail();
   std::vector<batch::Record> records;
   std::vector<std::string> names, paths;
   std::vector<Eigen::Matrix4d> poses;
@@ -266,12 +240,31 @@ int main(int argc, char** argv)
                         error.empty() ? "poses and scans differ in number"
                                       : error.c_str()),
            2;
-  Eigen::Vector3d drift = Eigen::Vector3d::Zero();
-  if (const char* text = value(argc, argv, "--reference-drift", nullptr))
-    if (std::sscanf(text, "%lf,%lf,%lf", &drift.x(), &drift.y(), &drift.z()) != 3)
-      return std::fprintf(stderr, "--reference-drift expects DX,DY,DZ\n"), 1;
-  removeDrift(drift, names, poses);
-  const std::vector<Row> rows = judgeRecords(records, names, paths, poses, csv_path);
+  removeDrift(Eigen::Vector3d(d[0], d[1], d[2]), names, poses);
+  const std::vector<Row> rows =
+      judgeRecords(records, names, paths, poses, args.text("--csv"));
   summarize(rows, real_overlap);
   return 0;
 }
+
+} // namespace
+
+namespace pcl::phaser::bench {
+
+const Subcommand kLoopClosure = {
+    "loop-closure",
+    "pcl_phaser_batch's records judged against the trajectory's reference poses: "
+    "errors, wrong accepted edges, NEES",
+    nullptr,
+    {{"--records", "R.jsonl", "the records of pcl_phaser_batch --scans ..."},
+     {"--scans", "LIST", "the scan list the batch read"},
+     {"--poses", "POSES", "the reference poses, one line per scan"},
+     {"--csv", "FILE", "every pair as CSV"},
+     {"--real-overlap", "F",
+      "a candidate with at least this overlap is a real revisit (default 0.3)"},
+     sharedOption("--reference-drift")},
+    false,
+    0,
+    runLoopClosure};
+
+} // namespace pcl::phaser::bench

@@ -3,7 +3,7 @@
 # scans within RADIUS m and at least GAP scans apart, run through pcl_phaser_batch
 # (one process; two shards under GNU parallel) and through a per-pair pcl_phaser_align
 # loop, all timed in one run beside the FFT yardstick, then judged against the
-# reference poses (pcl_phaser_loop_closure_report).
+# reference poses (pcl_phaser_bench loop-closure).
 #   bench/loop_closures.sh [BUILD_DIR] [OUT_DIR]     (RADIUS=20 GAP=10 THREADS=2)
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -20,7 +20,7 @@ cand=(--scans "$out/scans.txt" --poses "$data/poses_T_world_lidar.txt" --radius 
 "$batch" "${cand[@]}" --print-pairs > "$out/pairs.txt"
 n=$(grep -vc '^#' "$out/pairs.txt")
 now() { date +%s.%N; }
-yard() { "$build/bench/pcl_phaser_loop_closure_report" --yardstick; }
+yard() { "$build/bench/pcl_phaser_bench" yardstick; }
 echo "candidates: $n (within $radius m, >= $gap scans apart); $(nproc) cores, $threads threads"
 echo "yardstick before: $(yard) ms"
 
@@ -51,7 +51,7 @@ cmp -s <(records "$out/serial.jsonl") <(records "$out/merged.jsonl") &&
   echo "sharded = serial: identical records" || echo "sharded != serial"
 cmp -s <(records "$out/serial.jsonl") <(records "$out/jobs.jsonl") &&
   echo "default jobs = serial: identical records" || echo "default jobs != serial"
-report=("$build/bench/pcl_phaser_loop_closure_report" --records "$out/serial.jsonl"
+report=("$build/bench/pcl_phaser_bench" loop-closure --records "$out/serial.jsonl"
         --scans "$out/scans.txt" --poses "$data/poses_T_world_lidar.txt")
 "${report[@]}" --csv "$out/pairs.csv"
 # The references drift about 0.2 m over the sequence (doc/benchmarks.md, covariance

@@ -2,7 +2,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * The aligners pcl_phaser_benchmark compares, behind one signature: pcl_phaser (fused
+ * The aligners pcl_phaser_bench compares, behind one signature: pcl_phaser (fused
  * and range-only), PCL's global aligners (SAC-IA and SampleConsensusPrerejective on
  * FPFH, FPCS, KFPCS) and its local ones started from identity (ICP, GICP, NDT).
  */
@@ -10,6 +10,7 @@
 
 #include "protocol.h"
 
+#include <pcl_phaser/core/parameters.h>
 #include <pcl_phaser/core/result.h>
 
 #include <Eigen/Core>
@@ -27,17 +28,16 @@ namespace bench {
 /** \brief What a method may be tuned with; scale-dependent radii derive from voxel. */
 struct MethodSettings {
   double voxel = 0.5;    ///< leaf of the downsampling for PCL's methods (m)
-  bool centroid = false; ///< pcl_phaser: project about the centroids (overrides center)
-  /** pcl_phaser's projection center: sensor, centroid or auto; empty: its default */
-  std::string center;
+  bool centroid = false; ///< pcl_phaser: project about the centroids (overrides engine)
   int threads = 2;
-  int bandwidth = 64;                ///< pcl_phaser spherical bandwidth
-  unsigned seed = 1;                 ///< std::srand seed of PCL's randomized aligners
-  int fpcs_seconds = 10;             ///< time limit of FPCS / KFPCS
-  bool normalized_refinement = true; ///< pcl_phaser's setNormalizedRefinement
-  /** pcl_phaser's PhaserParameters::orientation_candidates; < 0: its default */
-  int orientation_candidates = -1;
-  double max_tilt_deg = 0.0; ///< pcl_phaser's PhaserParameters::max_tilt_deg
+  int bandwidth = 64;    ///< pcl_phaser spherical bandwidth
+  unsigned seed = 1;     ///< std::srand seed of PCL's randomized aligners
+  int fpcs_seconds = 10; ///< time limit of FPCS / KFPCS
+  /** pcl_phaser's setNormalizedRefinement (false: off whatever engine says) */
+  bool normalized_refinement = true;
+  /** pcl_phaser's other settings (--orientation-candidates, --max-tilt, ...); its
+   *  bandwidth and threads are the two above */
+  PhaserParameters engine;
 };
 
 /** \brief One registration's outcome (T maps the source into the target frame). */

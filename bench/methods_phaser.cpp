@@ -29,20 +29,13 @@ MethodResult align(const typename pcl::PointCloud<PointP>::ConstPtr& source,
 {
   const auto start = std::chrono::steady_clock::now();
   pcl::PhaserRegistration<PointP, PointP> phaser;
-  phaser.setBandwidth(settings.bandwidth);
-  phaser.setNumberOfThreads(settings.threads);
-  pcl::phaser::PhaserParameters params = phaser.getParameters();
-  params.normalized_refinement = settings.normalized_refinement;
-  if (settings.orientation_candidates >= 0)
-    params.orientation_candidates = settings.orientation_candidates;
-  params.max_tilt_deg = settings.max_tilt_deg;
-  using Center = pcl::phaser::ProjectionCenter;
-  if (settings.centroid || settings.center == "centroid")
-    params.projection_center = Center::Centroid;
-  else if (settings.center == "sensor")
-    params.projection_center = Center::SensorOrigin;
-  else if (settings.center == "auto")
-    params.projection_center = Center::Automatic;
+  pcl::phaser::PhaserParameters params = settings.engine;
+  params.bandwidth = settings.bandwidth;
+  params.num_threads = settings.threads;
+  params.normalized_refinement =
+      settings.normalized_refinement && settings.engine.normalized_refinement;
+  if (settings.centroid)
+    params.projection_center = pcl::phaser::ProjectionCenter::Centroid;
   phaser.setParameters(params);
   phaser.setInputSource(source);
   phaser.setInputTarget(target);

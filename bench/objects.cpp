@@ -2,10 +2,10 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * -study objects: every ordered pair of the bunny views present (bun.conf's views
- * whose PLY is in the folder) whose source has at least 30 % of its points within 2 mm
- * of the target after the truth, by each method; right: RRE < 5 deg and RTE < 5 mm.
- * Times in ms and in units of one 128^3 FFT measured in the same run. The ordered
+ * pcl_phaser_bench objects: every ordered pair of the bunny views present (bun.conf's
+ * views whose PLY is in the folder) whose source has at least 30 % of its points within
+ * 2 mm of the target after the truth, by each method; right: RRE < 5 deg and RTE < 5
+ * mm. Times in ms and in units of one 128^3 FFT measured in the same run. The ordered
  * pairs below that overlap are run too: a method's converged flag should not claim
  * them.
  */
@@ -14,9 +14,9 @@
 #include "objects.h"
 #include "protocol.h"
 #include "report.h"
+#include "subcommands.h"
 
 #include <pcl/common/transforms.h>
-#include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 #include <pcl/kdtree/kdtree_flann.h>
 
@@ -26,7 +26,6 @@
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -45,11 +44,11 @@ constexpr double kMinOverlap = 0.3;      ///< of the source's points, for a pair
 constexpr double kRightDeg = 5.0, kRightM = 0.005;
 
 struct ObjectOptions {
-  std::string data = PCL_PHASER_DEFAULT_DATA_DIR;
+  std::string data;
   /** phaser_xyz: the views carry x y z only, so pcl::PhaserRegistration<PointXYZ>
    *  (phaser would fuse an intensity channel of zeros) */
-  std::vector<std::string> methods = {"phaser_xyz", "sacia", "prerejective"};
-  int threads = 2;
+  std::vector<std::string> methods;
+  PhaserParameters engine; ///< pcl_phaser's settings; its threads every method's
   std::string csv;
 };
 
@@ -70,29 +69,19 @@ struct ObjectTrial {
   bool counted() const { return pair->overlap >= kMinOverlap; } ///< one of the pairs
 };
 
-/** \brief The options of \a argv into \a o; false (with a message) if one is invalid.
- */
-bool parseObjectOptions(int argc, char** argv, ObjectOptions& o)
+/** \brief Reads and checks the options; false when one is invalid (recorded in
+ * \a args). */
+bool parseObjectOptions(BenchArguments& args, ObjectOptions& o)
 {
-  std::string methods;
-  console::parse_argument(argc, argv, "-data", o.data);
-  if (console::parse_argument(argc, argv, "-methods", methods) >= 0)
-    o.methods = splitList(methods);
-  console::parse_argument(argc, argv, "-threads", o.threads);
-  console::parse_argument(argc, argv, "-csv", o.csv);
-  bool ok = true;
-  auto fail = [&](const std::string& what) {
-    console::print_error("Invalid option: %s\n", what.c_str());
-    ok = false;
-  };
-  if (o.methods.empty())
-    fail("-methods: none given");
+  o.data = args.data();
+  o.methods = args.list("--methods", {"phaser_xyz", "sacia", "prerejective"});
+  o.csv = args.text("--csv");
+  o.engine = args.engine(2);
+  args.check(!o.methods.empty(), "--methods: none given");
   for (const std::string& m : o.methods)
-    if (!findMethod(m))
-      fail("-methods: unknown method " + m);
-  if (o.threads < 1 || o.threads > 256)
-    fail("-threads");
-  return ok;
+    args.check(findMethod(m) != nullptr, "--methods: unknown method " + m);
+  args.check(o.engine.num_threads >= 1, "--threads: every method's, >= 1");
+  return args.ok();
 }
 
 /** \brief The views of bun.conf whose PLY is in \a folder, in bun.conf's order. */
@@ -153,7 +142,8 @@ std::vector<ObjectPair> orderedPairs(const std::vector<ObjectView>& views,
 MethodSettings objectSettings(const ObjectOptions& o)
 {
   MethodSettings settings; // pcl_phaser at its defaults but the threads
-  settings.threads = o.threads;
+  settings.threads = o.engine.num_threads;
+  settings.engine = o.engine;
   settings.voxel = kVoxel;
   return settings;
 }
@@ -278,24 +268,21 @@ void writePairTable(std::ostream& md, const std::vector<ObjectTrial>& trials,
 }
 
 /** \brief The command, the setup, the yardstick and the two tables. */
-void writeReport(std::ostream& md, int argc, char** argv, const ObjectOptions& o,
+void writeReport(std::ostream& md, const std::string& command, const ObjectOptions& o,
                  const std::vector<ObjectPair>& pairs,
                  const std::vector<ObjectTrial>& trials, double fft_ms)
 {
-  std::ostringstream command;
-  for (int i = 0; i < argc; ++i)
-    command << (i ? " " : "") << argv[i];
   const auto counted = std::count_if(pairs.begin(), pairs.end(), [](const auto& p) {
     return p.overlap >= kMinOverlap;
   });
-  md << "Command: `" << command.str() << "`\n\n"
+  md << "Command: `" << command << "`\n\n"
      << "Objects: " << counted
      << " pairs, the ordered pairs of the Stanford bunny views "
      << "of " << kFolder
      << " whose source has >= 30 % of its points within 2 mm of the "
      << "target after the truth (bun.conf); the other " << pairs.size() - counted
      << " are run for the converged flag only. Right: RRE < 5 deg and RTE < 5 mm. "
-     << o.threads << " threads; PCL's methods at a voxel of " << kVoxel
+     << o.engine.num_threads << " threads; PCL's methods at a voxel of " << kVoxel
      << " m (normals 2 v, FPFH 5 v); pcl_phaser default-constructed but the threads. "
         "Each method aligned the first pair once, untimed, before the trials.\n\n"
      << "Yardstick: one 128^3 real-to-complex FFT (FFTW_MEASURE, 1 thread) = "
@@ -306,42 +293,12 @@ void writeReport(std::ostream& md, int argc, char** argv, const ObjectOptions& o
   writePairTable(md, trials, pairs, o.methods);
 }
 
-} // namespace
-
-bool isObjectsStudy(int argc, char** argv)
-{
-  std::string study;
-  return console::parse_argument(argc, argv, "-study", study) >= 0 &&
-         study == "objects";
-}
-
-void printObjectsHelp(const char* program)
-{
-  console::print_info(
-      "Usage: %s -study objects [options]\n"
-      "  the Stanford bunny views of <data>/%s (truth from bun.conf): every\n"
-      "  ordered pair whose source has >= 30 %% of its points within 2 mm of the\n"
-      "  target after the truth; right: RRE < 5 deg and RTE < 5 mm\n"
-      "  -data DIR        the shared data directory (default %s)\n"
-      "  -methods A,B     as the compare study's (-h); default\n"
-      "                   phaser_xyz,sacia,prerejective: pcl::PhaserRegistration\n"
-      "                   <PointXYZ> default-constructed but the threads (the views\n"
-      "                   have no intensity), PCL's SAC-IA and prerejective on FPFH\n"
-      "                   at the object-scale voxel of %g m (normals 2 v, FPFH 5 v)\n"
-      "  -threads N       threads for every method (default 2)\n"
-      "  -csv FILE        every trial as CSV\n",
-      program, kFolder, PCL_PHASER_DEFAULT_DATA_DIR, kVoxel);
-}
-
-int runObjectsStudy(int argc, char** argv)
+/** \brief Runs the study: the pairs by the methods, the report and the CSV. */
+int runObjectsStudy(BenchArguments& args)
 {
   ObjectOptions o;
-  const bool help = console::find_switch(argc, argv, "-h") ||
-                    console::find_switch(argc, argv, "--help");
-  if (help || !parseObjectOptions(argc, argv, o)) {
-    printObjectsHelp(argv[0]);
-    return help ? 0 : 2;
-  }
+  if (!parseObjectOptions(args, o))
+    return args.fail();
   console::setVerbosityLevel(console::L_ERROR);
   const std::string folder =
       std::filesystem::path(o.data + "/" + kFolder).lexically_normal().string();
@@ -366,9 +323,28 @@ int runObjectsStudy(int argc, char** argv)
   }
   const std::vector<ObjectTrial> trials =
       runTrials(o, pairs, clouds, o.csv.empty() ? nullptr : &csv);
-  writeReport(std::cout, argc, argv, o, pairs, trials, fft_ms);
+  writeReport(std::cout, args.command(), o, pairs, trials, fft_ms);
   return 0;
 }
+
+} // namespace
+
+const Subcommand kObjects = {
+    "objects",
+    "the Stanford bunny views of <data>/object/stanford_bunny (truth from "
+    "bun.conf): every ordered pair whose source has >= 30 % of its points within "
+    "2 mm of the target after the truth; right: RRE < 5 deg and RTE < 5 mm",
+    nullptr,
+    {sharedOption("--data"),
+     sharedOption("--methods",
+                  "as compare's; default phaser_xyz,sacia,prerejective: "
+                  "pcl::PhaserRegistration<PointXYZ> (the views have no "
+                  "intensity), PCL's SAC-IA and prerejective on FPFH at the "
+                  "object-scale voxel of 0.004 m (normals 2 v, FPFH 5 v)"),
+     sharedOption("--csv")},
+    true,
+    2,
+    runObjectsStudy};
 
 } // namespace bench
 } // namespace pcl::phaser

@@ -2,9 +2,9 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * pcl_phaser_benchmark -study objects: the global aligners on partial range scans of an
- * object, the Stanford bunny views of object/stanford_bunny, against the poses of
- * Stanford's bun.conf. It has its own options (see printObjectsHelp()).
+ * pcl_phaser_bench objects: the global aligners on partial range scans of an object,
+ * the Stanford bunny views of object/stanford_bunny, against the poses of Stanford's
+ * bun.conf.
  *
  * bun.conf stores each view's rotation transposed: a line "bmesh <file> tx ty tz qx qy
  * qz qw" means p_bun000 = R(q)^T p + t. The parsing is header-only here so that the
@@ -20,18 +20,6 @@
 
 namespace pcl::phaser {
 namespace bench {
-
-/** \brief Whether the command line asks for "-study objects". */
-bool isObjectsStudy(int argc, char** argv);
-
-/** \brief Prints the options of the objects study. */
-void printObjectsHelp(const char* program);
-
-/** \brief Runs the objects study: every ordered pair of the bunny views whose source
- * overlaps the target enough, by every method; markdown tables on stdout, optionally a
- * CSV of the trials.
- * \return the process exit status (0 also when the data folder is absent) */
-int runObjectsStudy(int argc, char** argv);
 
 /** \brief A view of bun.conf: its file and T_bun000_view. */
 struct ObjectView {

@@ -5,7 +5,7 @@
 
 The Stanford bunny views of object/stanford_bunny, truth from Stanford's bun.conf
 (p_bun000 = R(q)^T p + t, so T_target_source = T_000_target^-1 T_000_source), as in
-pcl_phaser_benchmark -study objects. Pairs: every ordered pair of the views present whose
+pcl_phaser_bench objects. Pairs: every ordered pair of the views present whose
 source has at least --min-overlap of its points within 2 mm of the target after the
 truth; the other ordered pairs are aligned by pcl_phaser too, whose converged flag should
 not claim them. Right: rotation error < 5 deg and translation error < 5 mm.

@@ -2,27 +2,17 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * pcl_phaser_prior_map_benchmark: relocalization in a prior map aggregated from the
- * balm_handheld scans (every second listed scan from scan 0, optionally voxel-thinned),
- * kept in scan 0's frame or moved rigidly to site frames whose origins lie far from
- * the data; the other scans are the queries. Default parameters, one target prepared
- * once per frame.
- *
- *   pcl_phaser_prior_map_benchmark [-data DIR] [-every 2] [-voxel 0.1]
- *                                  [-distances 0,200,5000] [-queries 15] [-threads 2]
- *
- * Prints per query the errors against site * T_world_query, converged and the align
- * time; per frame the map's points, the target's preparation (ms), the median query
- * (ms, preparation excluded), right (5 deg / 0.6 m) and converged counts, and the
- * process's peak resident memory; times also in FFT units (one 128^3 r2c FFT on one
- * thread, measured first).
+ * pcl_phaser_bench prior-map: relocalization in a prior map aggregated from the
+ * balm_handheld scans, kept in scan 0's frame or moved rigidly to site frames far from
+ * the data; the other scans are the queries. Per query the errors and time, per frame
+ * the map's points, the target's preparation, the median query, right and converged
+ * counts and the peak resident memory.
  */
 #include "fft_yardstick.h"
 #include "prior_map.h"
+#include "subcommands.h"
 
 #include <pcl_phaser/phaser_registration.h>
-
-#include <pcl/console/parse.h>
 
 #include <Eigen/Geometry>
 
@@ -45,11 +35,11 @@ double peakRssMb()
 }
 
 /** The queries against one map; false when a scan cannot be read. */
-bool runFrame(const std::string& dir, const PriorMap& map, int queries, int threads,
-              double fft_ms)
+bool runFrame(const std::string& dir, const PriorMap& map, int queries,
+              const pcl::phaser::PhaserParameters& params, double fft_ms)
 {
   pcl::PhaserRegistration<pcl::PointXYZI, pcl::PointXYZI> phaser;
-  phaser.setNumberOfThreads(static_cast<unsigned>(threads));
+  phaser.setParameters(params);
   phaser.setInputTarget(map.cloud);
   std::vector<double> query_ms;
   double prepare_ms = 0.0;
@@ -91,25 +81,21 @@ bool runFrame(const std::string& dir, const PriorMap& map, int queries, int thre
   return true;
 }
 
-} // namespace
-
-int main(int argc, char** argv)
+/** The map in each site frame and its queries. */
+int runPriorMap(pcl::phaser::bench::BenchArguments& args)
 {
-  std::string dir = "../shared/data";
-  int every = 2, queries = 15, threads = 2;
-  double voxel = 0.1;
-  std::vector<double> distances{0.0, 200.0, 5000.0};
-  pcl::console::parse_argument(argc, argv, "-data", dir);
-  pcl::console::parse_argument(argc, argv, "-every", every);
-  pcl::console::parse_argument(argc, argv, "-voxel", voxel);
-  pcl::console::parse_argument(argc, argv, "-queries", queries);
-  pcl::console::parse_argument(argc, argv, "-threads", threads);
-  pcl::console::parse_x_arguments(argc, argv, "-distances", distances);
-  if (every < 2 || queries < 1 || threads < 1) {
-    std::fprintf(stderr,
-                 "prior_map: -every must be >= 2, -queries and -threads >= 1\n");
-    return 1;
-  }
+  std::string dir = args.data();
+  const int every = static_cast<int>(args.integer("--every", 2));
+  const int queries = static_cast<int>(args.integer("--queries", 15));
+  const double voxel = args.number("--voxel", 0.1);
+  const std::vector<double> distances =
+      args.numbers("--distances", {0.0, 200.0, 5000.0});
+  const pcl::phaser::PhaserParameters params = args.engine(2);
+  const int threads = params.num_threads;
+  args.check(every >= 2 && queries >= 1 && threads >= 1,
+             "--every must be >= 2, --queries and --threads >= 1");
+  if (!args.ok())
+    return args.fail();
   dir += "/lidar/balm_handheld";
   const double fft_ms = pcl::phaser::bench::fftYardstickMs();
   std::printf("yardstick FFT128 %.2f ms; map: every %d-th scan, voxel %.2f m; %d "
@@ -123,8 +109,28 @@ int main(int argc, char** argv)
       std::fprintf(stderr, "prior_map: %s\n", error.c_str());
       return 1;
     }
-    if (!runFrame(dir, map, queries, threads, fft_ms))
+    if (!runFrame(dir, map, queries, params, fft_ms))
       return 1;
   }
   return 0;
 }
+
+} // namespace
+
+namespace pcl::phaser::bench {
+
+const Subcommand kPriorMap = {
+    "prior-map",
+    "relocalization in a prior map of the handheld scans, in scan 0's frame and "
+    "in site frames far from the data",
+    nullptr,
+    {sharedOption("--data"),
+     {"--every", "K", "every K-th listed scan from scan 0 in the map (default 2)"},
+     sharedOption("--voxel", "the map's voxel (m; default 0.1, 0: unthinned)"),
+     {"--distances", "L", "the site frames' distances (m; default 0,200,5000)"},
+     {"--queries", "N", "queries per frame (default 15)"}},
+    true,
+    2,
+    runPriorMap};
+
+} // namespace pcl::phaser::bench

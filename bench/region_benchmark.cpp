@@ -2,21 +2,16 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * pcl_phaser_region_benchmark: queries against an unthinned prior map of the shared
- * handheld scans (every K-th in scan 0's frame), with a position prior (a region of
- * radius R about a point 5 m from the truth) and without, against a scan-to-scan align
- * of the same query onto the nearest map scan (doc/benchmarks.md, *Position prior*).
- *
- *   pcl_phaser_region_benchmark [-data DIR] [-every K] [-radius R] [-runs N]
- *                               [-threads T] [QUERY_INDEX ...]
+ * pcl_phaser_bench region: queries against an unthinned prior map of the shared
+ * handheld scans with a position prior and without, against a scan-to-scan align of
+ * the same query onto the nearest map scan (doc/benchmarks.md, *Position prior*).
  */
 #include "bench_timing.h"
 #include "fft_yardstick.h"
 #include "prior_map.h"
+#include "subcommands.h"
 
 #include <pcl_phaser/core/pipeline.h>
-
-#include <pcl/console/parse.h>
 
 #include <Eigen/Geometry>
 
@@ -119,15 +114,16 @@ Target nearestScan(const bench::PriorMap& m, const std::string& dir, int index,
 }
 
 void runQuery(const bench::PriorMap& m, const Target& map, const std::string& dir,
-              int index, double radius, int runs, int threads, double unit)
+              int index, double radius, int runs, const PhaserParameters& engine,
+              double unit)
 {
   const SourceCloud query = scanOf(dir, index);
   const Eigen::Matrix4d truth = m.world_lidar.at(index);
   int nearest = 0;
   Eigen::Matrix4d world_nearest = Eigen::Matrix4d::Identity();
   const Target scan = nearestScan(m, dir, index, nearest, world_nearest);
-  PhaserParameters params;
-  params.num_threads = threads;
+  PhaserParameters params = engine;
+  params.region.reset();
   const auto same = [](PhaserParameters&, int) {};
   timedAlign(scan, query, params); // prepares the scan target
   const Timed pair = medianOf(runs, scan, query, params, same);
@@ -140,8 +136,8 @@ void runQuery(const bench::PriorMap& m, const Target& map, const std::string& di
         p.region->x = center.x() + 1e-3 * (k + 1);
       });
   const Timed cached = medianOf(runs, map, query, params, same);
-  PhaserParameters whole;
-  whole.num_threads = threads;
+  PhaserParameters whole = engine;
+  whole.region.reset();
   timedAlign(map, query, whole); // prepares the whole map
   const Timed whole_map = medianOf(runs, map, query, whole, same);
   std::printf("| %d | %d | %.1f / %.1f | %s | %.1f / %.2f | %s | %.1f / %.1f | %.2f / "
@@ -154,30 +150,27 @@ void runQuery(const bench::PriorMap& m, const Target& map, const std::string& di
               verdict(whole_map.result, truth).c_str());
 }
 
-} // namespace
-
-int main(int argc, char** argv)
+/** The map, then each query's row. */
+int runRegion(bench::BenchArguments& args)
 {
-  std::string data = PCL_PHASER_DEFAULT_DATA_DIR;
-  pcl::console::parse_argument(argc, argv, "-data", data);
-  const std::string dir = data + "/lidar/balm_handheld";
-  int every = 2, runs = 5, threads = 2;
-  double radius = 10.0;
-  pcl::console::parse_argument(argc, argv, "-every", every);
-  pcl::console::parse_argument(argc, argv, "-runs", runs);
-  pcl::console::parse_argument(argc, argv, "-threads", threads);
-  pcl::console::parse_argument(argc, argv, "-radius", radius);
+  const std::string dir = args.data() + "/lidar/balm_handheld";
+  const int every = static_cast<int>(args.integer("--every", 2));
+  const int runs = static_cast<int>(args.integer("--runs", 5));
+  const double radius = args.number("--radius", 10.0);
+  const PhaserParameters engine = args.engine(2);
+  const int threads = engine.num_threads;
   std::vector<int> queries;
-  for (int i = 1; i < argc; ++i)
-    if (argv[i][0] != '-' && argv[i - 1][0] != '-')
-      queries.push_back(std::atoi(argv[i]));
+  for (const std::string& q : args.files()) {
+    long index = 0;
+    args.check(parseInteger(q, 0, 1 << 20, index), "Invalid query index '" + q + "'");
+    queries.push_back(static_cast<int>(index));
+  }
   if (queries.empty())
     queries = {6, 90, 150};
-  if (every < 2 || runs < 1 || threads < 0 || !(radius > 0.0)) {
-    std::fprintf(stderr,
-                 "expected -every >= 2, -runs >= 1, -threads >= 0, -radius > 0\n");
-    return 1;
-  }
+  args.check(every >= 2 && runs >= 1 && radius > 0.0,
+             "expected --every >= 2, --runs >= 1, --radius > 0");
+  if (!args.ok())
+    return args.fail();
   const double unit = bench::fftYardstickMs();
   bench::PriorMap m;
   std::string error;
@@ -204,7 +197,27 @@ int main(int argc, char** argv)
       std::fprintf(stderr, "scan %d: not a query (no pose, or in the map)\n", index);
       return 1;
     }
-    runQuery(m, map, dir, index, radius, runs, threads, unit);
+    runQuery(m, map, dir, index, radius, runs, engine, unit);
   }
   return 0;
 }
+
+} // namespace
+
+namespace pcl::phaser::bench {
+
+const Subcommand kRegion = {
+    "region",
+    "queries against an unthinned prior map with a position prior (a region of "
+    "radius R about a point 5 m from the truth), without, and against the nearest "
+    "map scan",
+    "[QUERY_INDEX ...]",
+    {sharedOption("--data"),
+     {"--every", "K", "every K-th listed scan in the map (default 2)"},
+     {"--radius", "R", "the region's radius (m; default 10)"},
+     {"--runs", "N", "aligns per figure, the median printed (default 5)"}},
+    true,
+    2,
+    runRegion};
+
+} // namespace pcl::phaser::bench

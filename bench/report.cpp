@@ -13,7 +13,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 
 namespace pcl::phaser {
 namespace bench {
@@ -236,7 +235,7 @@ std::vector<std::string> writePlots(const std::string& dir,
                                                : "overlap (% of the azimuth circle)";
     gp << "set terminal pngcairo size 1000,420 font ',11' noenhanced\nset output '"
        << base
-       << ".png'\nset multiplot layout 1,2 title 'pcl_phaser_benchmark: " << sweep
+       << ".png'\nset multiplot layout 1,2 title 'pcl_phaser_bench compare: " << sweep
        << " sweep'\nset key bottom left\nset grid\nset xlabel '" << xlabel
        << "'\nset xrange [*:*] reverse\n"
        << "set ylabel 'success (%)'\nset yrange [0:105]\n"
@@ -260,16 +259,6 @@ std::string formatValue(const char* fmt, double value)
   char text[64];
   std::snprintf(text, sizeof(text), fmt, value);
   return text;
-}
-
-std::vector<std::string> splitList(const std::string& text)
-{
-  std::vector<std::string> parts;
-  std::stringstream in(text);
-  for (std::string part; std::getline(in, part, ',');)
-    if (!part.empty())
-      parts.push_back(part);
-  return parts;
 }
 
 } // namespace bench

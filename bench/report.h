@@ -2,8 +2,8 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * What pcl_phaser_benchmark records per registration, and its summaries: the markdown
- * tables, the CSV, and gnuplot plots of the sweeps.
+ * What pcl_phaser_bench compare, nees and detection record per registration, and its
+ * summaries: the markdown tables, the CSV, and gnuplot plots of the sweeps.
  */
 #pragma once
 
@@ -63,9 +63,6 @@ std::vector<std::string> writePlots(const std::string& dir,
 
 /** \brief \a value printed with the printf format \a fmt, or "-" when not finite. */
 std::string formatValue(const char* fmt, double value);
-
-/** \brief The non-empty parts of a comma-separated option value ("a,,b" -> a, b). */
-std::vector<std::string> splitList(const std::string& text);
 
 } // namespace bench
 } // namespace pcl::phaser

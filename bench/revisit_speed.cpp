@@ -2,30 +2,19 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * pcl_phaser_revisit_speed: the time of pcl::PhaserRegistration::align on revisit pairs
- * (two scans of one place meters apart: loop-closure candidates), the work users bring.
- * For each pair of the list, in a warm process (one align of the first pair before any
- * timing): a fresh align (target set again: spectra, grids and index rebuilt) and a
- * cached one, with 1 and with 2 engine threads, each with its stages and minor page
- * faults; then two aligns of consecutive pairs in two threads of the process (1 engine
- * thread each) against the same two in series; then the fused align (range and
- * intensity) against a range-only one (channels = range), alternated per pair. Medians
- * over the pairs, in ms and in FFT units (one 128^3 r2c FFT on one thread, measured
- * before and after the aligns).
- *
- *   pcl_phaser_revisit_speed [-data DIR] [-pairs-file F] [-max-pairs N] [-fusion]
- *
- * -fusion: the fused against range-only comparison alone.
- *
- * The list: `source target ...` per line (# comments), scans under its folder.
+ * pcl_phaser_bench speed: the time of pcl::PhaserRegistration::align on revisit pairs
+ * in a warm process: fresh and cached aligns with 1 and 2 engine threads by stage and
+ * page faults, two aligns in two threads against the same two in series, and the fused
+ * align against a range-only one; medians over the pairs in ms and FFT units.
  */
 #include "bench_timing.h"
 #include "cloud_reading.h"
 #include "fft_yardstick.h"
+#include "methods.h"
+#include "subcommands.h"
 
 #include <pcl_phaser/phaser_registration.h>
 
-#include <pcl/console/parse.h>
 #include <pcl/filters/filter.h>
 #include <pcl/point_types.h>
 
@@ -66,16 +55,9 @@ bool readPairs(const std::string& file, int max_pairs, std::vector<Pair>& pairs)
     std::string s, t;
     if (line.empty() || line[0] == '#' || !(words >> s >> t))
       continue;
-    Pair p{pcl::make_shared<Cloud>(), pcl::make_shared<Cloud>()};
-    std::string error;
-    if (!pcl::phaser::loadCloud(folder + s, *p.source, &error) ||
-        !pcl::phaser::loadCloud(folder + t, *p.target, &error)) {
-      std::fprintf(stderr, "error: %s\n", error.c_str());
-      return false;
-    }
-    pcl::Indices kept;
-    pcl::removeNaNFromPointCloud(*p.source, *p.source, kept);
-    pcl::removeNaNFromPointCloud(*p.target, *p.target, kept);
+    const Pair p{loadFiniteScan(folder + s), loadFiniteScan(folder + t)};
+    if (!p.source || !p.target)
+      return false; // the loader said why
     pairs.push_back(p);
   }
   return !pairs.empty();
@@ -209,16 +191,15 @@ void compareFusion(const std::vector<Pair>& pairs, double unit)
       median(ratios), moved, pairs.size(), claims);
 }
 
-} // namespace
-
-int main(int argc, char** argv)
+/** The aligns of the pairs: the stage table, the thread figures and the fusion
+ *  comparison (that alone with --fusion). */
+int runSpeed(BenchArguments& args)
 {
-  std::string data = "../shared/data";
-  int max_pairs = 0;
-  pcl::console::parse_argument(argc, argv, "-data", data);
-  pcl::console::parse_argument(argc, argv, "-max-pairs", max_pairs);
-  std::string file = data + "/lidar/balm_handheld/pairs.txt";
-  pcl::console::parse_argument(argc, argv, "-pairs-file", file);
+  const int max_pairs = static_cast<int>(args.integer("--max-pairs", 0));
+  const std::string file =
+      args.text("--pairs-file", args.data() + "/lidar/balm_handheld/pairs.txt");
+  if (!args.ok())
+    return args.fail();
   std::vector<Pair> pairs;
   if (!readPairs(file, max_pairs, pairs))
     return 0;
@@ -227,7 +208,7 @@ int main(int argc, char** argv)
     std::vector<Timing> warm, unused;
     timePairs({pairs.front()}, 2, warm, unused); // tables, plans, pool
   }
-  if (pcl::console::find_switch(argc, argv, "-fusion")) {
+  if (args.has("--fusion")) {
     compareFusion(pairs, before);
     return 0;
   }
@@ -257,3 +238,23 @@ int main(int argc, char** argv)
   compareFusion(pairs, unit);
   return 0;
 }
+
+} // namespace
+
+namespace pcl::phaser::bench {
+
+const Subcommand kSpeed = {
+    "speed",
+    "the time of aligns of the revisit pairs in a warm process: fresh and cached, "
+    "1 and 2 threads, by stage; two aligns in two threads; fused against range "
+    "only",
+    nullptr,
+    {sharedOption("--data"),
+     sharedOption("--pairs-file"),
+     sharedOption("--max-pairs"),
+     {"--fusion", nullptr, "the fused against range-only comparison alone"}},
+    false,
+    0,
+    runSpeed};
+
+} // namespace pcl::phaser::bench

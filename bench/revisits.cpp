@@ -2,11 +2,11 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * -study revisits: each pair of lidar/balm_handheld/pairs.txt ("source target dist_m
- * rel_rot_deg overlap" then T_target_source row-major 4 x 4) by each method, run as the
- * compare study runs them; success at 2 m and at 0.6 m (RRE < 5 deg both), by bins of
- * the distance between the scans, with the converged flag's false accepts and the
- * times in units of one 128^3 FFT. With -derived-pairs the pairs are derived from
+ * pcl_phaser_bench revisits: each pair of lidar/balm_handheld/pairs.txt ("source target
+ * dist_m rel_rot_deg overlap" then T_target_source row-major 4 x 4) by each method, run
+ * as the compare study runs them; success at 2 m and at 0.6 m (RRE < 5 deg both), by
+ * bins of the distance between the scans, with the converged flag's false accepts and
+ * the times in units of one 128^3 FFT. With --derived-pairs the pairs are derived from
  * poses_T_world_lidar.txt instead (derivePairs() in revisits.h).
  */
 #include "cloud_reading.h"
@@ -17,8 +17,8 @@
 #include "result_csv.h"
 #include "revisits.h"
 #include "revisits_calibration.h"
+#include "subcommands.h"
 
-#include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 #include <pcl/filters/filter.h>
 
@@ -45,17 +45,16 @@ namespace console = pcl::console;
 const char* const kFolder = "lidar/balm_handheld";
 
 struct RevisitOptions {
-  std::string data = PCL_PHASER_DEFAULT_DATA_DIR;
-  std::string pairs_file; ///< empty: <data>/lidar/balm_handheld/pairs.txt
-  std::vector<std::string> methods = {"phaser", "phaser_xyz", "sacia", "prerejective"};
-  int max_pairs = 0, threads = 2, fpcs_seconds = 10;
-  int orientation_candidates = -1; ///< pcl_phaser's; < 0: its default
+  std::string data,
+      pairs_file; ///< pairs_file empty: <data>/lidar/balm_handheld/pairs.txt
+  std::vector<std::string> methods;
+  int max_pairs = 0, fpcs_seconds = 10;
   int derived_pairs = 0; ///< per bin from the poses instead of the pairs file; 0: off
   unsigned seed = 1;
   double voxel = 1.0; ///< leaf of PCL's methods, as for the compare study's LiDAR
-  double source_wedge = 1.0; ///< azimuth share of each source kept (-source-wedge)
-  std::string center;        ///< pcl_phaser's projection center; empty: its default
-  /** -reference-drift: linear odometry drift (world, m per scan index) removed from
+  double source_wedge = 1.0; ///< azimuth share of each source kept (--source-wedge)
+  PhaserParameters engine;   ///< pcl_phaser's settings; its threads every method's
+  /** --reference-drift: linear odometry drift (world, m per scan index) removed from
    *  the reference poses (correctDrift()); empty: none */
   std::vector<double> drift;
   std::string csv, markdown, plots;
@@ -63,65 +62,39 @@ struct RevisitOptions {
 
 constexpr std::size_t kDisjointBins = 4; ///< the first bins() partition the distances
 
-bool parseRevisitOptions(int argc, char** argv, RevisitOptions& o)
+/** Reads and checks the options; false when one is invalid (recorded in \a args). */
+bool parseRevisitOptions(BenchArguments& args, RevisitOptions& o)
 {
-  std::string methods;
-  console::parse_argument(argc, argv, "-data", o.data);
-  console::parse_argument(argc, argv, "-pairs-file", o.pairs_file);
-  if (console::parse_argument(argc, argv, "-methods", methods) >= 0)
-    o.methods = splitList(methods);
-  console::parse_argument(argc, argv, "-max-pairs", o.max_pairs);
-  console::parse_argument(argc, argv, "-source-wedge", o.source_wedge);
-  console::parse_argument(argc, argv, "-derived-pairs", o.derived_pairs);
-  console::parse_argument(argc, argv, "-threads", o.threads);
-  console::parse_argument(argc, argv, "-seed", o.seed);
-  console::parse_argument(argc, argv, "-voxel", o.voxel);
-  console::parse_argument(argc, argv, "-fpcs_time", o.fpcs_seconds);
-  console::parse_argument(argc, argv, "-orientation_candidates",
-                          o.orientation_candidates);
-  console::parse_argument(argc, argv, "-center", o.center);
-  console::parse_argument(argc, argv, "-csv", o.csv);
-  console::parse_argument(argc, argv, "-md", o.markdown);
-  console::parse_argument(argc, argv, "-plots", o.plots);
-  std::string drift;
-  if (console::parse_argument(argc, argv, "-reference-drift", drift) >= 0)
-    for (const std::string& v : splitList(drift))
-      o.drift.push_back(std::strtod(v.c_str(), nullptr));
-  bool ok = true;
-  auto fail = [&](const std::string& what) {
-    console::print_error("Invalid option: %s\n", what.c_str());
-    ok = false;
-  };
-  if (o.methods.empty())
-    fail("-methods: none given");
+  o.data = args.data();
+  o.pairs_file = args.text("--pairs-file");
+  o.methods = args.list("--methods", {"phaser", "phaser_xyz", "sacia", "prerejective"});
+  o.max_pairs = static_cast<int>(args.integer("--max-pairs", 0));
+  o.source_wedge = args.number("--source-wedge", 1.0);
+  o.derived_pairs = static_cast<int>(args.integer("--derived-pairs", 0));
+  o.seed = static_cast<unsigned>(args.integer("--seed", 1));
+  o.voxel = args.number("--voxel", 1.0);
+  o.fpcs_seconds = static_cast<int>(args.integer("--fpcs-time", 10));
+  o.csv = args.text("--csv");
+  o.markdown = args.text("--md");
+  o.plots = args.text("--plots");
+  o.drift = args.numbers("--reference-drift", {});
+  o.engine = args.engine(2);
+  args.check(!o.methods.empty(), "--methods: none given");
   for (const std::string& m : o.methods)
-    if (!findMethod(m))
-      fail("-methods: unknown method " + m);
-  if (o.max_pairs < 0)
-    fail("-max-pairs");
-  if (o.derived_pairs < 0)
-    fail("-derived-pairs");
-  if (!(o.source_wedge > 0.0 && o.source_wedge <= 1.0))
-    fail("-source-wedge");
-  if (o.threads < 1 || o.threads > 256)
-    fail("-threads");
-  if (!(o.voxel > 0.0))
-    fail("-voxel");
-  if (o.fpcs_seconds < 1)
-    fail("-fpcs_time");
-  if (o.orientation_candidates > 20)
-    fail("-orientation_candidates");
-  if (!o.center.empty() && o.center != "sensor" && o.center != "centroid" &&
-      o.center != "auto")
-    fail("-center " + o.center);
-  if (!o.drift.empty() &&
-      (o.drift.size() != 3 ||
-       !Eigen::Vector3d(o.drift[0], o.drift[1], o.drift[2]).allFinite()))
-    fail("-reference-drift: three finite numbers DX,DY,DZ");
-  return ok;
+    args.check(findMethod(m) != nullptr, "--methods: unknown method " + m);
+  args.check(o.max_pairs >= 0, "--max-pairs: >= 0");
+  args.check(o.derived_pairs >= 0, "--derived-pairs: >= 0");
+  args.check(o.source_wedge > 0.0 && o.source_wedge <= 1.0,
+             "--source-wedge: in (0, 1]");
+  args.check(o.engine.num_threads >= 1, "--threads: every method's, >= 1");
+  args.check(o.voxel > 0.0, "--voxel: > 0");
+  args.check(o.fpcs_seconds >= 1, "--fpcs-time: >= 1");
+  args.check(o.drift.empty() || o.drift.size() == 3,
+             "--reference-drift: three numbers DX,DY,DZ");
+  return args.ok();
 }
 
-/** The pairs of the study: those of the pairs file or, with -derived-pairs, those
+/** The pairs of the study: those of the pairs file or, with --derived-pairs, those
  * derivePairs() finds in the poses; \a origin says which, for the report. False (with
  * a message) on an unreadable or malformed file. */
 bool loadPairs(const RevisitOptions& o, const std::string& pairs_file,
@@ -191,12 +164,11 @@ std::vector<RevisitTrial> runTrials(const RevisitOptions& o, const std::string& 
                                     std::ostream* csv)
 {
   MethodSettings settings;
-  settings.threads = o.threads;
+  settings.threads = o.engine.num_threads;
   settings.voxel = o.voxel;
   settings.seed = o.seed; // + pose, which is 0 for real pairs
   settings.fpcs_seconds = o.fpcs_seconds;
-  settings.orientation_candidates = o.orientation_candidates;
-  settings.center = o.center;
+  settings.engine = o.engine;
   std::map<std::string, Cloud::ConstPtr> scans; // each read once
   auto scan = [&](const std::string& name) {
     if (!scans.count(name))
@@ -325,7 +297,8 @@ std::string writePlot(const std::string& dir, const std::vector<RevisitTrial>& t
   dat.close();
   std::ofstream gp(base + ".gp");
   gp << "set terminal pngcairo size 900,500 font ',11' noenhanced\nset output '" << base
-     << ".png'\nset title 'pcl_phaser_benchmark: revisit pairs (RRE < 5 deg; solid: "
+     << ".png'\nset title 'pcl_phaser_bench revisits: revisit pairs (RRE < 5 deg; "
+        "solid: "
         "RTE "
         "< 2 m, dashed: RTE < 0.6 m)'\nset key outside right\nset grid\n"
      << "set xlabel 'distance between the scans'\nset xrange [-0.3:"
@@ -343,17 +316,14 @@ std::string writePlot(const std::string& dir, const std::vector<RevisitTrial>& t
   return std::system(("gnuplot '" + base + ".gp'").c_str()) == 0 ? base + ".png" : "";
 }
 
-void writeReport(std::ostream& md, int argc, char** argv,
+void writeReport(std::ostream& md, const std::string& command,
                  const std::vector<RevisitTrial>& trials, const RevisitOptions& o,
                  const std::string& origin, double fft_ms,
                  const std::vector<ScanPose>& poses)
 {
-  std::ostringstream command;
-  for (int i = 0; i < argc; ++i)
-    command << (i ? " " : "") << argv[i];
-  md << "Command: `" << command.str() << "`\n\n"
+  md << "Command: `" << command << "`\n\n"
      << "Revisit pairs: " << origin << " (voxel of PCL's methods " << o.voxel << " m, "
-     << o.threads << " threads). Success @2 m: RRE < " << kRreThreshold
+     << o.engine.num_threads << " threads). Success @2 m: RRE < " << kRreThreshold
      << " deg and RTE < " << kRteThresholdA << " m; @0.6 m: RTE < " << kRteThresholdB
      << " m. Median RRE / RTE over the successes @2 m; time over all trials. False "
         "accepts: failures @2 m that the method reported as converged.\n\n"
@@ -370,51 +340,6 @@ void writeReport(std::ostream& md, int argc, char** argv,
     md << "\n" << drift;
 }
 
-} // namespace
-
-bool isRevisitsStudy(int argc, char** argv)
-{
-  std::string study;
-  return console::parse_argument(argc, argv, "-study", study) >= 0 &&
-         study == "revisits";
-}
-
-void printRevisitsHelp(const char* program)
-{
-  console::print_info(
-      "Usage: %s -study revisits [options]\n"
-      "  the real revisit pairs of <data>/%s, binned by distance\n"
-      "  -data DIR        the shared data directory (default %s)\n"
-      "  -pairs-file F    pairs (default <data>/%s/pairs.txt); scans are read\n"
-      "                   from <data>/%s unless their names are absolute\n"
-      "  -derived-pairs N instead of the pairs file, up to N pairs per bin [3, 5),\n"
-      "                   [5, 10), [10, 15), [15, 21] m derived from the poses of\n"
-      "                   poses_T_world_lidar.txt (scan gap >= 18, not in the pairs\n"
-      "                   file either way), shuffled with -seed (default 0: off)\n"
-      "  -max-pairs N     only the first N pairs (default 0: all)\n"
-      "  -source-wedge F  keep of each source only an azimuth sector of F x 360 deg\n"
-      "                   about a random direction (seeded by -seed and the pair),\n"
-      "                   in (0, 1] (default 1: the whole scan)\n"
-      "  -methods A,B     default phaser,phaser_xyz,sacia,prerejective\n"
-      "  -threads N       threads for every method (default 2)\n"
-      "  -seed S          seed of PCL's RANSAC (default 1)\n"
-      "  -voxel V         leaf (m) of PCL's methods (default 1)\n"
-      "  -fpcs_time S     time limit of FPCS/KFPCS in seconds (default 10)\n"
-      "  -orientation_candidates N  pcl_phaser's orientation hypotheses, 0..20\n"
-      "                   (default: the library's, 10)\n"
-      "  -center C        pcl_phaser's projection center: sensor, centroid or auto\n"
-      "                   (default: the library's)\n"
-      "  -csv FILE        every trial as CSV\n"
-      "  -md FILE         the markdown summary (default: stdout)\n"
-      "  -plots DIR       revisits_success.{dat,gp,png} (PNG with gnuplot)\n"
-      "  -reference-drift DX,DY,DZ  remove a linear drift of the odometry (world\n"
-      "                   frame, m per scan index: scan i's position - i x drift)\n"
-      "                   from the reference poses (the report fits one)\n",
-      program, kFolder, PCL_PHASER_DEFAULT_DATA_DIR, kFolder, kFolder);
-}
-
-namespace {
-
 /** The trials' CSV with its header, or null without \a path. */
 std::unique_ptr<std::ofstream> openCsv(const std::string& path)
 {
@@ -428,20 +353,12 @@ std::unique_ptr<std::ofstream> openCsv(const std::string& path)
   return csv;
 }
 
-} // namespace
-
-int runRevisitsStudy(int argc, char** argv)
+/** Runs the study: every pair by every method, the report, the CSV and the plot. */
+int runRevisitsStudy(BenchArguments& args)
 {
-  if (console::find_switch(argc, argv, "-h") ||
-      console::find_switch(argc, argv, "--help")) {
-    printRevisitsHelp(argv[0]);
-    return 0;
-  }
   RevisitOptions o;
-  if (!parseRevisitOptions(argc, argv, o)) {
-    printRevisitsHelp(argv[0]);
-    return 2;
-  }
+  if (!parseRevisitOptions(args, o))
+    return args.fail();
   console::setVerbosityLevel(console::L_ERROR);
   const std::string folder =
       std::filesystem::path(o.data + "/" + kFolder).lexically_normal().string();
@@ -478,8 +395,8 @@ int runRevisitsStudy(int argc, char** argv)
   std::ofstream md_file;
   if (!o.markdown.empty())
     md_file.open(o.markdown);
-  writeReport(o.markdown.empty() ? std::cout : md_file, argc, argv, trials, o, origin,
-              fft_ms, poses);
+  writeReport(o.markdown.empty() ? std::cout : md_file, args.command(), trials, o,
+              origin, fft_ms, poses);
   if (!o.plots.empty()) {
     const std::string png = writePlot(o.plots, trials, o.methods);
     if (!png.empty())
@@ -487,6 +404,40 @@ int runRevisitsStudy(int argc, char** argv)
   }
   return trials.empty() && !pairs.empty() ? 1 : 0;
 }
+
+} // namespace
+
+const Subcommand kRevisits = {
+    "revisits",
+    "the global aligners on the real revisit pairs of lidar/balm_handheld, by "
+    "the distance between the scans",
+    nullptr,
+    {sharedOption("--data"),
+     sharedOption("--pairs-file"),
+     {"--derived-pairs", "N",
+      "instead of the pairs file, up to N pairs per bin [3, 5), [5, 10), [10, "
+      "15), [15, 21] m derived from the poses of poses_T_world_lidar.txt (scan "
+      "gap >= 18, not in the pairs file either way), shuffled with --seed "
+      "(default 0: off)"},
+     sharedOption("--max-pairs"),
+     {"--source-wedge", "F",
+      "keep of each source only an azimuth sector of F x 360 deg about a random "
+      "direction (seeded by --seed and the pair), in (0, 1] (default 1)"},
+     sharedOption("--methods", "as compare's (default "
+                               "phaser,phaser_xyz,sacia,prerejective)"),
+     sharedOption("--seed", "seed of PCL's RANSAC (default 1)"),
+     sharedOption("--voxel", "leaf (m) of PCL's methods (default 1)"),
+     sharedOption("--fpcs-time"),
+     sharedOption("--csv"),
+     sharedOption("--md"),
+     sharedOption("--plots", "revisits_success.{dat,gp,png} (PNG with gnuplot)"),
+     sharedOption("--reference-drift",
+                  "remove a linear drift of the odometry (world frame, m per "
+                  "scan index: scan i's position - i x drift) from the reference "
+                  "poses (the report fits one)")},
+    true,
+    2,
+    runRevisitsStudy};
 
 } // namespace bench
 } // namespace pcl::phaser

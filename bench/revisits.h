@@ -2,12 +2,11 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * pcl_phaser_benchmark -study revisits: the global aligners on the real revisit pairs
- * of lidar/balm_handheld (two scans of one place taken meters apart, reference poses
- * from LiDAR-inertial odometry), binned by the distance between the scans. It has its
- * own options (see printRevisitsHelp()).
+ * pcl_phaser_bench revisits: the global aligners on the real revisit pairs of
+ * lidar/balm_handheld (two scans of one place taken meters apart, reference poses from
+ * LiDAR-inertial odometry), binned by the distance between the scans.
  *
- * The pairs come from pairs.txt or, with -derived-pairs, are derived from the poses of
+ * The pairs come from pairs.txt or, with --derived-pairs, are derived from the poses of
  * poses_T_world_lidar.txt; the reading and the derivation are header-only here so that
  * the tests can check them without the binary.
  */
@@ -33,24 +32,6 @@
 
 namespace pcl::phaser {
 namespace bench {
-
-/** \brief Whether the command line asks for "-study revisits". */
-bool isRevisitsStudy(int argc, char** argv);
-
-/** \brief Prints the options of the revisit study. */
-void printRevisitsHelp(const char* program);
-
-/** \brief Time of one 128^3 real-to-complex FFTW transform (fftw_plan_dft_r2c_3d,
- * FFTW_MEASURE, one thread): the median of 15 executions, in ms. The wisdom gathered
- * while planning is forgotten afterwards, so later FFTW_ESTIMATE plans of the library
- * are the same as in a run without the yardstick. */
-double fftYardstickMs();
-
-/** \brief Runs the revisit study: every pair of the pairs file (or derived from the
- * poses) by every method, markdown tables per method and distance bin, optionally a
- * CSV and a plot.
- * \return the process exit status (0 also when the data folder is absent) */
-int runRevisitsStudy(int argc, char** argv);
 
 /** \brief One revisit pair: scan file names, the distance between the scans (m), their
  * relative rotation (deg), the overlap proxy of pairs.txt (NaN for derived pairs). */

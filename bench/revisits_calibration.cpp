@@ -2,9 +2,9 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * -study revisits: the distance bins, and how the covariance of the converged trials
- * covers their errors (the NEES table), against references corrected for the odometry's
- * drift or not.
+ * pcl_phaser_bench revisits: the distance bins, and how the covariance of the converged
+ * trials covers their errors (the NEES table), against references corrected for the
+ * odometry's drift or not.
  */
 #include "protocol.h"
 #include "report.h"
@@ -148,7 +148,7 @@ std::string driftLine(const std::vector<RevisitTrial>& trials,
          " trials (fitDrift(), world frame): (" + formatValue("%.4g", d.x()) + ", " +
          formatValue("%.4g", d.y()) + ", " + formatValue("%.4g", d.z()) +
          ") m per scan index, " + formatValue("%.3f", 174.0 * d.norm()) +
-         " m over scans 0-174 (pass it as -reference-drift DX,DY,DZ to judge against "
+         " m over scans 0-174 (pass it as --reference-drift DX,DY,DZ to judge against "
          "corrected references).\n";
 }
 

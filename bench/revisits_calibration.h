@@ -2,9 +2,9 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * Internal to -study revisits (revisits.cpp): a trial, the distance bins, and the
- * covariance calibration (revisits_calibration.cpp): the NEES table and the odometry
- * drift of the references.
+ * Internal to pcl_phaser_bench revisits (revisits.cpp): a trial, the distance bins, and
+ * the covariance calibration (revisits_calibration.cpp): the NEES table and the
+ * odometry drift of the references.
  */
 #pragma once
 

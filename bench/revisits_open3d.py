@@ -9,7 +9,7 @@ downsampling, normals and features included) and reported as medians and as the 
 of Open3D's time to pcl_phaser's. Open3D follows its own tutorial's recipe at a voxel v
 (normals within 2 v, FPFH within 5 v, RANSAC with mutual-free matching, 1.5 v inlier
 distance, edge-length 0.9 and distance checkers, 100,000 iterations, confidence 0.999).
-Success as in pcl_phaser_benchmark -study revisits: RRE < 5 deg and RTE < 2 m.
+Success as in pcl_phaser_bench revisits: RRE < 5 deg and RTE < 2 m.
 
   PYTHONPATH=build/python python3 bench/revisits_open3d.py [--data DIR] [--threads N]
       [--voxel V] [--max-pairs N] [--csv FILE]

@@ -3,8 +3,9 @@
 #   tools/run.sh demo   install deps, build pcl_phaser_align, run it on its embedded default
 #   tools/run.sh test   install deps (gnuplot too), build everything (bench/ too), run the whole
 #                       test suite
-#   tools/run.sh benchmark [ARGS]   also installs gnuplot, then runs pcl_phaser_benchmark
-#                       (default: all methods on the shared scans; see doc/benchmarks.md)
+#   tools/run.sh benchmark [ARGS]   also installs gnuplot, then runs pcl_phaser_bench ARGS
+#                       (default: compare, all methods on the shared scans; see
+#                       doc/benchmarks.md)
 # Idempotent: packages already installed are skipped, the build directory is reused.
 set -euo pipefail
 job=${1:-demo}
@@ -61,7 +62,7 @@ case "$job" in
   test)
     cd "$build" && ctest --output-on-failure -j"$(nproc)" ;;
   benchmark)
-    # Reads ../shared/data (or -data DIR); plots go to ./benchmark_plots.
-    if (($#)); then "$build/bench/pcl_phaser_benchmark" "$@"
-    else "$build/bench/pcl_phaser_benchmark" -methods all -icp -pairs -plots benchmark_plots; fi ;;
+    # Reads ../shared/data (or --data DIR); plots go to ./benchmark_plots.
+    if (($#)); then "$build/bench/pcl_phaser_bench" "$@"
+    else "$build/bench/pcl_phaser_bench" compare --methods all --icp --pairs --plots benchmark_plots; fi ;;
 esac

@@ -67,7 +67,7 @@ TEST(PartialViews, QuarterWedgeRegistersAndConverges)
 }
 
 // A 36 deg wedge of the KITTI scan (centered at 40.67 deg azimuth) under a pure
-// rotation: pose 2 of `-conditions overlap:0.1 -t_max 0`). Pass 1's
+// rotation: pose 2 of `--conditions overlap:0.1 --t-max 0`). Pass 1's
 // best pose meets every limit but a distinct hypothesis ranks about as high; the
 // further translation peaks of every rotation then hold the right pose, which wins and
 // converges. With them tried only when nothing meets the limits, this ended at

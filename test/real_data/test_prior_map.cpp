@@ -70,7 +70,7 @@ void expectQueriesRegister(double distance, int every)
 }
 
 // Every third query (5 of 15) in scan 0's frame and 5 km away; all 15 at 200 m
-// (pcl_phaser_prior_map_benchmark runs all 15 in every frame).
+// (pcl_phaser_bench prior-map runs all 15 in every frame).
 TEST(PriorMap, QueriesNotInTheMapRegister)
 {
   expectQueriesRegister(0.0, 3);

@@ -30,7 +30,7 @@ const std::string kDir = "lidar/balm_handheld/";
 /** The reference's linear drift (world frame, m per scan index): the LiDAR-inertial
  *  odometry drifts about 0.21 m over scans 0-174 (74 m walked). Fitted by the revisit
  *  study (fitDrift) on the 304 converged derived pairs, none of pairs.txt:
- *  `pcl_phaser_benchmark -study revisits -derived-pairs 1000 -methods phaser`. */
+ *  `pcl_phaser_bench revisits --derived-pairs 1000 --methods phaser`. */
 const Eigen::Vector3d kOdometryDrift(0.001184, 0.0003174, 0.0001413);
 
 /** Chi-square, 6 dof: 99.9 % below 22.46. With seven or eight converged pairs a

@@ -230,7 +230,7 @@ TEST(Revisits, NarrowViewOfASymmetricYardDoesNotClaimTheMirror)
 }
 
 // A 90 deg sector of full6 against full78, 13.5 m away (a sector of the partial-revisit
-// study, -source-wedge 0.25). No pass-1 hypothesis is near the
+// study, --source-wedge 0.25). No pass-1 hypothesis is near the
 // right pose; the 180 deg flip of the yard meets every verification limit and ranks
 // above every other hypothesis, but by less than the choice of the sector's few hundred
 // samples explains (runner_up_error), so hasConverged() must not claim it.

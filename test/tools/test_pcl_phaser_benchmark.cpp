@@ -2,7 +2,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * pcl_phaser_benchmark: its evaluation protocol (errors, perturbations, conditions) and
+ * pcl_phaser_bench: its evaluation protocol (errors, perturbations, conditions) and
  * the built binary on one scan of ../shared/data (skipped with a message when absent).
  */
 #include "../registration/test_data.h"
@@ -226,7 +226,7 @@ TEST(DerivedPairs, ReproduceTheReferencePosesOfPairsTxt)
 
 std::string run(const std::string& arguments, int& status)
 {
-  const std::string command = std::string(PCL_PHASER_BENCHMARK_BIN) + " " + arguments;
+  const std::string command = std::string(PCL_PHASER_BENCH_BIN) + " " + arguments;
   FILE* pipe = popen(command.c_str(), "r");
   std::string out;
   char buffer[4096];
@@ -277,13 +277,41 @@ TEST(DerivedPairs, DriftCorrectionAndFitAreInverse)
 TEST(PclPhaserBenchmark, RejectsBadOptions)
 {
   int status = 0;
-  for (const char* bad : {"-methods nope", "-study x", "-conditions noise:abc",
-                          "-poses 0", "-bandwidths 1000", "-scans mars"}) {
-    run(std::string(bad) + " 2>&1", status);
+  for (const char* bad :
+       {"", "x", "compare --methods nope", "compare --conditions noise:abc",
+        "compare --poses 0", "compare --poses", "compare --poses 1.5",
+        "compare --bandwidths 1000", "compare --scans mars", "compare -poses 1",
+        "compare --max-tilt 400", "compare --orientation-candidates 99",
+        "align --bandwidth 1", "align a.pcd", "speed --threads 2", "yardstick x",
+        "region --radius 0"}) {
+    const std::string out = run(std::string(bad) + " 2>&1", status);
     EXPECT_NE(status, 0) << bad;
+    EXPECT_FALSE(out.empty()) << bad; // a message says why
   }
-  run("-data /nonexistent -poses 1 2>&1", status);
+  run("compare --data /nonexistent --poses 1 2>&1", status);
   EXPECT_NE(status, 0);
+}
+
+TEST(PclPhaserBenchmark, PrintsHelpPerSubcommand)
+{
+  int status = 0;
+  const std::string all = run("--help", status);
+  EXPECT_EQ(status, 0);
+  for (const char* sub :
+       {"compare", "nees", "detection", "revisits", "objects", "align", "speed",
+        "prior-map", "region", "calibrate-covariance"}) {
+    EXPECT_NE(all.find(std::string("  ") + sub + " "), std::string::npos) << sub;
+    const std::string help = run(std::string(sub) + " --help", status);
+    EXPECT_EQ(status, 0) << sub;
+    EXPECT_NE(help.find(std::string("Usage: pcl_phaser_bench ") + sub),
+              std::string::npos)
+        << help;
+  }
+  // The engine's settings as the tools spell them, with the subcommand's defaults.
+  const std::string align = run("align --help", status);
+  EXPECT_NE(align.find("--max-tilt"), std::string::npos) << align;
+  EXPECT_NE(align.find("--orientation-candidates"), std::string::npos) << align;
+  EXPECT_EQ(run("speed --help", status).find("--max-tilt"), std::string::npos);
 }
 
 TEST(PclPhaserBenchmark, ComparesPhaserWithSacIaOnARealScan)
@@ -291,11 +319,11 @@ TEST(PclPhaserBenchmark, ComparesPhaserWithSacIaOnARealScan)
   PCL_PHASER_REQUIRE_DATA("lidar/kitti_synthetic_gt/cloud049.ply");
   const std::string csv = ::testing::TempDir() + "/pcl_phaser_benchmark.csv";
   int status = 0;
-  const std::string md = run(
-      "-data " + pcl::phaser::test::dataDir() +
-          " -scans kitti_synthetic -poses 2 -methods phaser,phaser_xyz,sacia -csv " +
-          csv + " 2>/dev/null",
-      status);
+  const std::string md = run("compare --data " + pcl::phaser::test::dataDir() +
+                                 " --scans kitti_synthetic --poses 2 --methods "
+                                 "phaser,phaser_xyz,sacia --csv " +
+                                 csv + " 2>/dev/null",
+                             status);
   ASSERT_EQ(status, 0) << md;
   EXPECT_NE(md.find("| clean | phaser | 2 | 100 % |"), std::string::npos) << md;
   EXPECT_NE(md.find("| clean | sacia | 2 |"), std::string::npos) << md;
@@ -312,15 +340,14 @@ TEST(PclPhaserBenchmark, ComparesPhaserWithSacIaOnARealScan)
 TEST(PclPhaserBenchmark, RevisitStudyTabulatesMethodsByDistance)
 {
   int status = 0;
-  const std::string skipped = run("-study revisits -data /nonexistent 2>&1", status);
+  const std::string skipped = run("revisits --data /nonexistent 2>&1", status);
   EXPECT_EQ(status, 0) << skipped; // absent data: a message, not a failure
   EXPECT_NE(skipped.find("not found, skipping"), std::string::npos) << skipped;
-  run("-study revisits -methods nope 2>&1", status);
+  run("revisits --methods nope 2>&1", status);
   EXPECT_NE(status, 0);
   PCL_PHASER_REQUIRE_DATA("lidar/balm_handheld/pairs.txt");
-  const std::string md = run("-data " + pcl::phaser::test::dataDir() +
-                                 " -study revisits -methods phaser_xyz -max-pairs 2 "
-                                 "2>/dev/null",
+  const std::string md = run("revisits --data " + pcl::phaser::test::dataDir() +
+                                 " --methods phaser_xyz --max-pairs 2 2>/dev/null",
                              status);
   ASSERT_EQ(status, 0) << md;
   EXPECT_NE(md.find("| method | distance | n | success @2 m | success @0.6 m |"),
@@ -337,24 +364,24 @@ TEST(PclPhaserBenchmark, RevisitStudyTabulatesMethodsByDistance)
       md.find("| method | distance | converged with covariance | mean NEES (6) |"),
       std::string::npos)
       << md;
-  run("-study revisits -reference-drift 1,2 2>&1", status);
+  run("revisits --reference-drift 1,2 2>&1", status);
   EXPECT_NE(status, 0);
-  run("-study revisits -derived-pairs -1 2>&1", status);
+  run("revisits --derived-pairs -1 2>&1", status);
   EXPECT_NE(status, 0);
   for (const char* wedge : {"0", "1.5", "nan"}) {
-    run(std::string("-study revisits -source-wedge ") + wedge + " 2>&1", status);
+    run(std::string("revisits --source-wedge ") + wedge + " 2>&1", status);
     EXPECT_NE(status, 0) << wedge;
   }
   // One pair, range only, with the study's options \a extra.
   const auto one_pair = [&](const std::string& extra) {
-    return run("-data " + pcl::phaser::test::dataDir() + " -study revisits " + extra +
-                   " -max-pairs 1 -methods phaser_xyz 2>/dev/null",
+    return run("revisits --data " + pcl::phaser::test::dataDir() + " " + extra +
+                   " --max-pairs 1 --methods phaser_xyz 2>/dev/null",
                status);
   };
-  const std::string wedged = one_pair("-source-wedge 0.5");
+  const std::string wedged = one_pair("--source-wedge 0.5");
   ASSERT_EQ(status, 0) << wedged;
   EXPECT_NE(wedged.find("| phaser_xyz | all | 1 | "), std::string::npos) << wedged;
-  const std::string derived = one_pair("-derived-pairs 1");
+  const std::string derived = one_pair("--derived-pairs 1");
   ASSERT_EQ(status, 0) << derived;
   EXPECT_NE(derived.find("pairs derived from"), std::string::npos) << derived;
   EXPECT_NE(derived.find("| method | distance | n | success @2 m |"), std::string::npos)

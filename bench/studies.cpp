@@ -2,33 +2,30 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * pcl_phaser_benchmark: pcl_phaser against PCL's aligners on the same pairs, in one
- * process. Studies: compare (real scans of ../shared/data under random large poses with
- * exact truth, the paper's noise / sparsity / overlap sweeps, and -pairs: real pairs
- * with reference poses), nees (getCovariance() per bandwidth), detection
- * (hasConverged() on correct and wrong registrations), revisits (revisits.h) and
- * objects (objects.h). Writes a markdown summary (stdout or -md), a CSV (-csv) and PNG
- * plots (-plots DIR).
+ * pcl_phaser_bench compare, nees and detection: pcl_phaser against PCL's aligners on
+ * the same pairs, in one process: compare (real scans of ../shared/data under random
+ * large poses with exact truth, the paper's noise / sparsity / overlap sweeps, and
+ * --pairs: real pairs with reference poses), nees (getCovariance() per bandwidth),
+ * detection (hasConverged() on correct and wrong registrations). Writes a markdown
+ * summary (stdout or --md), a CSV (--csv) and PNG plots (--plots DIR).
  */
 #include "cloud_reading.h"
 #include "methods.h"
-#include "objects.h"
 #include "protocol.h"
 #include "report.h"
-#include "revisits.h"
+#include "subcommands.h"
 
 #include <pcl/common/transforms.h>
-#include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 #include <pcl/filters/filter.h>
 
 #include <Eigen/Geometry>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <sstream>
 
 namespace {
 
@@ -93,155 +90,119 @@ const std::vector<Pair> kPairs = {
 };
 
 struct Options {
-  std::string study = "compare", data = PCL_PHASER_DEFAULT_DATA_DIR;
-  std::vector<std::string> scans = {"hdl32", "kitti", "kitti_synthetic"};
-  std::vector<std::string> methods = {"phaser", "sacia"};
-  std::vector<std::string> conditions = {"clean"};
-  std::vector<int> bandwidths = {64};
-  int poses = 10, threads = 2, fpcs_seconds = 10;
-  int orientation_candidates = -1; ///< pcl_phaser's; < 0: its default
+  std::string study, data;
+  std::vector<std::string> scans, methods, conditions;
+  std::vector<int> bandwidths;
+  int poses = 10, fpcs_seconds = 10;
   unsigned seed = 1;
   bool icp = false, pairs = false;
   double rre_threshold = 5.0, rte_threshold = 0.6, t_max = 2.0;
   double max_tilt_pose = 180.0; ///< degrees: random poses tilted less than this
-  double max_tilt = 0.0;        ///< pcl_phaser's PhaserParameters::max_tilt_deg
   double voxel = 0.0;           ///< > 0: overrides the per-scan leaf of PCL's methods
-  std::string center;           ///< pcl_phaser's projection center; empty: its default
+  pcl::phaser::PhaserParameters
+      engine; ///< pcl_phaser's settings; its threads every method's
   std::string csv, markdown, plots;
 };
 
-void printHelp(const char* program)
+/** The options of the compare, nees and detection studies. */
+const std::vector<BenchOption> kStudyOptions = {
+    sharedOption("--data"),
+    {"--scans", "A,B",
+     "scans under random poses: hdl32,kitti,kitti_synthetic (default all)"},
+    {"--poses", "N", "random poses per scan and condition (default 10)"},
+    sharedOption("--seed"),
+    sharedOption(
+        "--methods",
+        "phaser,phaser_xyz,phaser_plain,sacia,prerejective,fpcs,kfpcs,icp,gicp,"
+        "ndt or all (all but kfpcs, which ignores its time limit, and "
+        "phaser_plain: phaser without the normalized refinement; default "
+        "phaser,sacia)"),
+    {"--conditions", "L",
+     "clean,noise:PSNR,sparsity:KEEP,overlap:KEEP or 'sweeps' for the paper's points "
+     "(60/50/40 dB; keep 0.5/0.25/0.1; overlap 0.5/0.25/0.1; default clean)"},
+    {"--icp", nullptr, "also report each method followed by ICP (as METHOD+icp)"},
+    {"--pairs", nullptr, "also run the real pairs with reference poses"},
+    {"--bandwidths", "L",
+     "pcl_phaser bandwidths (default --bandwidth's; nees: e.g. 32,64,128)"},
+    sharedOption("--fpcs-time"),
+    {"--t-max", "M", "largest random translation in meters (default 2)"},
+    {"--max-tilt-pose", "DEG",
+     "random rotations: uniform yaw, tilt below DEG (default 180: uniform on SO(3))"},
+    sharedOption("--voxel", "leaf (m) of PCL's methods' downsampling; radii scale with "
+                            "it (default per scan: 1 m for LiDAR)"),
+    sharedOption("--csv"),
+    sharedOption("--md"),
+    sharedOption("--plots",
+                 "sweep plots (gnuplot .dat/.gp, PNG when gnuplot is installed)"),
+};
+
+/** The methods of --methods all: all but kfpcs, which takes minutes per LiDAR pair (it
+ *  overruns setMaxComputationTime), and phaser_plain, a variant of phaser. */
+std::vector<std::string> allMethodNames()
 {
-  console::print_info(
-      "Usage: %s [options]\n"
-      "  -study S       compare | nees | detection | revisits | objects (default\n"
-      "                 compare; revisits and objects have their own options:\n"
-      "                 -study revisits -h, -study objects -h)\n"
-      "  -data DIR      the shared data directory (default %s)\n"
-      "  -scans A,B     scans under random poses: hdl32,kitti,kitti_synthetic\n"
-      "  -poses N       random poses per scan and condition (default 10)\n"
-      "  -seed S        seed of poses, perturbations and PCL's RANSAC (default 1)\n"
-      "  -methods A,B   phaser,phaser_xyz,phaser_plain,sacia,prerejective,fpcs,kfpcs,\n"
-      "                 icp,gicp,ndt or all (all but kfpcs, which ignores its time\n"
-      "                 limit, and phaser_plain: phaser without the normalized\n"
-      "                 refinement; default phaser,sacia)\n"
-      "  -conditions L  clean,noise:PSNR,sparsity:KEEP,overlap:KEEP or 'sweeps' for "
-      "the\n"
-      "                 paper's points (60/50/40 dB; keep 0.5/0.25/0.1; overlap "
-      "0.5/0.25/0.1)\n"
-      "  -icp           also report each method followed by ICP (as METHOD+icp)\n"
-      "  -pairs         also run the real pairs with reference poses\n"
-      "  -bandwidths L  pcl_phaser bandwidths (default 64; nees: e.g. 32,64,128)\n"
-      "  -threads N     threads for every method (default 2)\n"
-      "  -fpcs_time S   time limit of FPCS/KFPCS in seconds (default 10)\n"
-      "  -orientation_candidates N  pcl_phaser's orientation hypotheses, 0..20\n"
-      "                 (default: the library's, 10)\n"
-      "  -t_max M       largest random translation in meters (default 2)\n"
-      "  -max_tilt_pose D  random rotations: uniform yaw, tilt below D deg (default\n"
-      "                 180: uniform on SO(3))\n"
-      "  -max_tilt D    pcl_phaser's gravity prior, max_tilt_deg (default 0: off)\n"
-      "  -center C      pcl_phaser's projection center: sensor, centroid or auto\n"
-      "                 (default: the library's)\n"
-      "  -voxel V       leaf (m) of PCL's methods' downsampling; radii scale with it\n"
-      "                 (default per scan: 1 m for LiDAR)\n"
-      "  -csv FILE      every trial as CSV\n"
-      "  -md FILE       the markdown summary (default: stdout)\n"
-      "  -plots DIR     sweep plots (gnuplot .dat/.gp, PNG when gnuplot is "
-      "installed)\n",
-      program, PCL_PHASER_DEFAULT_DATA_DIR);
+  std::vector<std::string> names;
+  for (const Method& m : allMethods())
+    if (m.name != "kfpcs" && m.name != "phaser_plain")
+      names.push_back(m.name);
+  return names;
 }
 
-/** The options of \a argv into \a o, "all" methods and "sweeps" conditions expanded. */
-void readOptions(int argc, char** argv, Options& o)
+/** The options of \a args into \a o, "all" methods and "sweeps" conditions expanded. */
+void readOptions(BenchArguments& args, Options& o)
 {
-  std::string scans, methods, conditions, bandwidths;
-  console::parse_argument(argc, argv, "-study", o.study);
-  console::parse_argument(argc, argv, "-data", o.data);
-  if (console::parse_argument(argc, argv, "-scans", scans) >= 0)
-    o.scans = splitList(scans);
-  if (console::parse_argument(argc, argv, "-methods", methods) >= 0)
-    o.methods = splitList(methods);
-  if (console::parse_argument(argc, argv, "-conditions", conditions) >= 0)
-    o.conditions = splitList(conditions);
-  if (console::parse_argument(argc, argv, "-bandwidths", bandwidths) >= 0) {
-    o.bandwidths.clear();
-    for (const std::string& b : splitList(bandwidths))
-      o.bandwidths.push_back(std::atoi(b.c_str()));
-  }
-  console::parse_argument(argc, argv, "-poses", o.poses);
-  console::parse_argument(argc, argv, "-seed", o.seed);
-  console::parse_argument(argc, argv, "-threads", o.threads);
-  console::parse_argument(argc, argv, "-fpcs_time", o.fpcs_seconds);
-  console::parse_argument(argc, argv, "-orientation_candidates",
-                          o.orientation_candidates);
-  console::parse_argument(argc, argv, "-t_max", o.t_max);
-  console::parse_argument(argc, argv, "-max_tilt_pose", o.max_tilt_pose);
-  console::parse_argument(argc, argv, "-max_tilt", o.max_tilt);
-  console::parse_argument(argc, argv, "-voxel", o.voxel);
-  console::parse_argument(argc, argv, "-center", o.center);
-  console::parse_argument(argc, argv, "-csv", o.csv);
-  console::parse_argument(argc, argv, "-md", o.markdown);
-  console::parse_argument(argc, argv, "-plots", o.plots);
-  o.icp = console::find_switch(argc, argv, "-icp");
-  o.pairs = console::find_switch(argc, argv, "-pairs");
-  if (o.methods.size() == 1 && o.methods[0] == "all") {
-    o.methods.clear();
-    for (const Method& m : allMethods())
-      // kfpcs takes minutes per LiDAR pair (it overruns setMaxComputationTime);
-      // phaser_plain is a variant of phaser, not a peer.
-      if (m.name != "kfpcs" && m.name != "phaser_plain")
-        o.methods.push_back(m.name);
-  }
+  o.data = args.data();
+  o.scans = args.list("--scans", {"hdl32", "kitti", "kitti_synthetic"});
+  o.methods = args.list("--methods", {"phaser", "sacia"});
+  o.conditions = args.list("--conditions", {"clean"});
+  o.poses = static_cast<int>(args.integer("--poses", 10));
+  o.seed = static_cast<unsigned>(args.integer("--seed", 1));
+  o.fpcs_seconds = static_cast<int>(args.integer("--fpcs-time", 10));
+  o.t_max = args.number("--t-max", 2.0);
+  o.max_tilt_pose = args.number("--max-tilt-pose", 180.0);
+  o.voxel = args.number("--voxel", 0.0);
+  o.csv = args.text("--csv");
+  o.markdown = args.text("--md");
+  o.plots = args.text("--plots");
+  o.icp = args.has("--icp");
+  o.pairs = args.has("--pairs");
+  o.engine = args.engine(2);
+  for (double b : args.numbers("--bandwidths", {double(o.engine.bandwidth)}))
+    if (args.check(b == std::floor(b), "--bandwidths: integers"))
+      o.bandwidths.push_back(static_cast<int>(b));
+  if (o.methods.size() == 1 && o.methods[0] == "all")
+    o.methods = allMethodNames();
   if (o.conditions.size() == 1 && o.conditions[0] == "sweeps")
     o.conditions = {"clean",        "noise:60",      "noise:50",     "noise:40",
                     "sparsity:0.5", "sparsity:0.25", "sparsity:0.1", "overlap:0.5",
                     "overlap:0.25", "overlap:0.1"};
 }
 
-bool parseOptions(int argc, char** argv, Options& o)
+/** Reads and checks the options; false when one is invalid (recorded in \a args). */
+bool parseOptions(BenchArguments& args, Options& o)
 {
-  readOptions(argc, argv, o);
-  bool ok = true;
-  auto fail = [&](const std::string& what) {
-    console::print_error("Invalid option: %s\n", what.c_str());
-    ok = false;
-  };
-  if (o.study != "compare" && o.study != "nees" && o.study != "detection")
-    fail("-study " + o.study);
+  readOptions(args, o);
   for (const std::string& m : o.methods)
-    if (std::none_of(allMethods().begin(), allMethods().end(),
-                     [&](const Method& x) { return x.name == m; }))
-      fail("-methods: unknown method " + m);
+    args.check(findMethod(m) != nullptr, "--methods: unknown method " + m);
   for (const std::string& s : o.scans)
-    if (std::none_of(kScans.begin(), kScans.end(),
-                     [&](const Scan& x) { return x.name == s; }))
-      fail("-scans: unknown scan " + s);
+    args.check(std::any_of(kScans.begin(), kScans.end(),
+                           [&](const Scan& x) { return x.name == s; }),
+               "--scans: unknown scan " + s);
   for (const std::string& c : o.conditions) {
     Condition parsed;
-    if (!parseCondition(c, parsed))
-      fail("-conditions: " + c);
+    args.check(parseCondition(c, parsed), "--conditions: " + c);
   }
   for (int b : o.bandwidths)
-    if (b < 2 || b > 256)
-      fail("-bandwidths: " + std::to_string(b));
-  if (o.poses < 1 || o.poses > 100000)
-    fail("-poses");
-  if (o.threads < 1 || o.threads > 256)
-    fail("-threads");
-  if (o.fpcs_seconds < 1)
-    fail("-fpcs_time");
-  if (o.orientation_candidates > 20)
-    fail("-orientation_candidates");
-  if (!(o.t_max >= 0.0))
-    fail("-t_max");
-  if (!(o.max_tilt_pose > 0.0 && o.max_tilt_pose <= 180.0))
-    fail("-max_tilt_pose");
-  if (!(o.max_tilt >= 0.0 && o.max_tilt <= 180.0))
-    fail("-max_tilt");
-  if (!o.center.empty() && o.center != "sensor" && o.center != "centroid" &&
-      o.center != "auto")
-    fail("-center " + o.center);
-  return ok;
+    args.check(b >= 2 && b <= 256, "--bandwidths: " + std::to_string(b));
+  args.check(!(args.has("--bandwidths") && args.has("--bandwidth")) &&
+                 !(args.has("--bandwidths") && args.has("-b")),
+             "--bandwidths and --bandwidth: give one");
+  args.check(o.poses >= 1 && o.poses <= 100000, "--poses: 1..100000");
+  args.check(o.engine.num_threads >= 1, "--threads: every method's, >= 1");
+  args.check(o.fpcs_seconds >= 1, "--fpcs-time: >= 1");
+  args.check(o.t_max >= 0.0, "--t-max: >= 0");
+  args.check(o.max_tilt_pose > 0.0 && o.max_tilt_pose <= 180.0,
+             "--max-tilt-pose: in (0, 180]");
+  return args.ok();
 }
 
 /** Runs the requested methods on one (source, target, truth) and records the trials. */
@@ -256,14 +217,12 @@ public:
   void run(const Trial& base, const Cloud::Ptr& source, const Cloud::Ptr& target,
            const Eigen::Matrix4d& truth, MethodSettings settings, double rte_threshold)
   {
-    settings.threads = o_.threads;
+    settings.threads = o_.engine.num_threads;
     if (o_.voxel > 0.0)
       settings.voxel = o_.voxel;
     settings.seed = o_.seed + static_cast<unsigned>(base.pose);
     settings.fpcs_seconds = o_.fpcs_seconds;
-    settings.orientation_candidates = o_.orientation_candidates;
-    settings.max_tilt_deg = o_.max_tilt;
-    settings.center = o_.center;
+    settings.engine = o_.engine;
     for (const std::string& name : o_.methods) {
       const Method& method =
           *std::find_if(allMethods().begin(), allMethods().end(),
@@ -428,20 +387,15 @@ void detection(const Options& o, const std::map<std::string, Cloud::Ptr>& scans,
     }
 }
 
-} // namespace
-
 /** The markdown summary of the study, the CSV and the plots \a o asks for. */
-void writeReports(const Options& o, const std::vector<Trial>& trials, int argc,
-                  char** argv)
+void writeReports(const Options& o, const std::vector<Trial>& trials,
+                  const std::string& command)
 {
   std::ofstream md_file;
   if (!o.markdown.empty())
     md_file.open(o.markdown);
   std::ostream& md = o.markdown.empty() ? std::cout : md_file;
-  std::ostringstream command;
-  for (int i = 0; i < argc; ++i)
-    command << (i ? " " : "") << argv[i];
-  md << "Command: `" << command.str() << "`\n\n";
+  md << "Command: `" << command << "`\n\n";
   std::vector<Trial> random_trials, pair_trials;
   for (const Trial& t : trials)
     (t.sweep == "pair" ? pair_trials : random_trials).push_back(t);
@@ -469,26 +423,17 @@ void writeReports(const Options& o, const std::vector<Trial>& trials, int argc,
       console::print_info("wrote %s\n", png.c_str());
 }
 
-int main(int argc, char** argv)
+/** Runs the study named by the subcommand (compare, nees or detection). */
+int runStudy(BenchArguments& args)
 {
-  if (isRevisitsStudy(argc, argv))
-    return runRevisitsStudy(argc, argv);
-  if (isObjectsStudy(argc, argv))
-    return runObjectsStudy(argc, argv);
-  if (console::find_switch(argc, argv, "-h") ||
-      console::find_switch(argc, argv, "--help")) {
-    printHelp(argv[0]);
-    return 0;
-  }
   Options o;
-  if (!parseOptions(argc, argv, o)) {
-    printHelp(argv[0]);
-    return 2;
-  }
+  o.study = args.name();
+  if (!parseOptions(args, o))
+    return args.fail();
   console::setVerbosityLevel(console::L_ERROR);
   const auto scans = loadScans(o);
   if (scans.empty() && !(o.study == "compare" && o.pairs)) {
-    console::print_error("No scan could be read from %s (set -data to the shared data "
+    console::print_error("No scan could be read from %s (set --data to the shared data "
                          "directory).\n",
                          o.data.c_str());
     return 1;
@@ -505,6 +450,38 @@ int main(int argc, char** argv)
     detection(o, scans, runner);
   }
   std::fprintf(stderr, "\n");
-  writeReports(o, trials, argc, argv);
+  writeReports(o, trials, args.command());
   return 0;
 }
+
+} // namespace
+
+namespace pcl::phaser::bench {
+
+const Subcommand kCompare = {
+    "compare",
+    "pcl_phaser against PCL's aligners: the shared scans under random poses "
+    "(sweeps of noise, sparsity, overlap) and, with --pairs, real pairs",
+    nullptr,
+    kStudyOptions,
+    true,
+    2,
+    runStudy};
+
+const Subcommand kNees = {
+    "nees",  "getCovariance() against the errors of random poses, per bandwidth",
+    nullptr, kStudyOptions,
+    true,    2,
+    runStudy};
+
+const Subcommand kDetection = {
+    "detection",
+    "hasConverged() on right and wrong registrations (unrelated scenes, "
+    "extreme noise, tiny overlap)",
+    nullptr,
+    kStudyOptions,
+    true,
+    2,
+    runStudy};
+
+} // namespace pcl::phaser::bench
