@@ -350,9 +350,7 @@ int runAlign(BenchArguments& args)
 
 } // namespace
 
-namespace pcl::phaser::bench {
-
-const Subcommand kAlign = {
+const pcl::phaser::bench::Subcommand pcl::phaser::bench::kAlign = {
     "align",
     "the time of one align by stage: 1 and 2 threads, fresh and cached target "
     "(SOURCE TARGET, or the simulated demo pair); with --max-tilt DEG the gravity "
@@ -371,5 +369,3 @@ const Subcommand kAlign = {
     true,
     0,
     runAlign};
-
-} // namespace pcl::phaser::bench

@@ -150,9 +150,7 @@ int runCalibration(pcl::phaser::bench::BenchArguments& args)
 
 } // namespace
 
-namespace pcl::phaser::bench {
-
-const Subcommand kCalibrateCovariance = {
+const pcl::phaser::bench::Subcommand pcl::phaser::bench::kCalibrateCovariance = {
     "calibrate-covariance",
     "simulated LiDAR pairs registered per bandwidth: the pose errors and the "
     "ingredients of getCovariance() as CSV",
@@ -165,5 +163,3 @@ const Subcommand kCalibrateCovariance = {
     false,
     0,
     runCalibration};
-
-} // namespace pcl::phaser::bench

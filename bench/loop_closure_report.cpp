@@ -249,9 +249,7 @@ int runLoopClosure(pcl::phaser::bench::BenchArguments& args)
 
 } // namespace
 
-namespace pcl::phaser::bench {
-
-const Subcommand kLoopClosure = {
+const pcl::phaser::bench::Subcommand pcl::phaser::bench::kLoopClosure = {
     "loop-closure",
     "pcl_phaser_batch's records judged against the trajectory's reference poses: "
     "errors, wrong accepted edges, NEES",
@@ -266,5 +264,3 @@ const Subcommand kLoopClosure = {
     false,
     0,
     runLoopClosure};
-
-} // namespace pcl::phaser::bench

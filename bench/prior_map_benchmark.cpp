@@ -117,9 +117,7 @@ int runPriorMap(pcl::phaser::bench::BenchArguments& args)
 
 } // namespace
 
-namespace pcl::phaser::bench {
-
-const Subcommand kPriorMap = {
+const pcl::phaser::bench::Subcommand pcl::phaser::bench::kPriorMap = {
     "prior-map",
     "relocalization in a prior map of the handheld scans, in scan 0's frame and "
     "in site frames far from the data",
@@ -132,5 +130,3 @@ const Subcommand kPriorMap = {
     true,
     2,
     runPriorMap};
-
-} // namespace pcl::phaser::bench

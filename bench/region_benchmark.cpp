@@ -204,9 +204,7 @@ int runRegion(bench::BenchArguments& args)
 
 } // namespace
 
-namespace pcl::phaser::bench {
-
-const Subcommand kRegion = {
+const pcl::phaser::bench::Subcommand pcl::phaser::bench::kRegion = {
     "region",
     "queries against an unthinned prior map with a position prior (a region of "
     "radius R about a point 5 m from the truth), without, and against the nearest "
@@ -219,5 +217,3 @@ const Subcommand kRegion = {
     true,
     2,
     runRegion};
-
-} // namespace pcl::phaser::bench

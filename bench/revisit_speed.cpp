@@ -241,9 +241,7 @@ int runSpeed(BenchArguments& args)
 
 } // namespace
 
-namespace pcl::phaser::bench {
-
-const Subcommand kSpeed = {
+const pcl::phaser::bench::Subcommand pcl::phaser::bench::kSpeed = {
     "speed",
     "the time of aligns of the revisit pairs in a warm process: fresh and cached, "
     "1 and 2 threads, by stage; two aligns in two threads; fused against range "
@@ -256,5 +254,3 @@ const Subcommand kSpeed = {
     false,
     0,
     runSpeed};
-
-} // namespace pcl::phaser::bench

@@ -456,9 +456,7 @@ int runStudy(BenchArguments& args)
 
 } // namespace
 
-namespace pcl::phaser::bench {
-
-const Subcommand kCompare = {
+const pcl::phaser::bench::Subcommand pcl::phaser::bench::kCompare = {
     "compare",
     "pcl_phaser against PCL's aligners: the shared scans under random poses "
     "(sweeps of noise, sparsity, overlap) and, with --pairs, real pairs",
@@ -468,13 +466,13 @@ const Subcommand kCompare = {
     2,
     runStudy};
 
-const Subcommand kNees = {
+const pcl::phaser::bench::Subcommand pcl::phaser::bench::kNees = {
     "nees",  "getCovariance() against the errors of random poses, per bandwidth",
     nullptr, kStudyOptions,
     true,    2,
     runStudy};
 
-const Subcommand kDetection = {
+const pcl::phaser::bench::Subcommand pcl::phaser::bench::kDetection = {
     "detection",
     "hasConverged() on right and wrong registrations (unrelated scenes, "
     "extreme noise, tiny overlap)",
@@ -483,5 +481,3 @@ const Subcommand kDetection = {
     true,
     2,
     runStudy};
-
-} // namespace pcl::phaser::bench
