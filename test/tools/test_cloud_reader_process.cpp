@@ -2,11 +2,10 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * The reader process (cloud_reader_process.h): clouds read through it equal those read
+ * The reader process (io/cloud_reading.h): clouds read through it equal those read
  * directly, a file that makes PCL's reader fail is a clean error through it too, and
  * when it is killed loadCloud() reads by itself again.
  */
-#include "cloud_reader_process.h"
 #include "cloud_reading.h"
 
 #include <pcl/io/pcd_io.h>
