@@ -112,6 +112,22 @@ void limitChild(std::uintmax_t file_size)
     ::setrlimit(RLIMIT_AS, &limit);
 }
 
+/** Send (\a out) or read \a size bytes whole; false at the end of the stream or on an
+ * error. */
+bool transfer(int fd, char* data, std::size_t size, bool out)
+{
+  for (std::size_t done = 0; done < size;) {
+    const ssize_t n = out ? ::send(fd, data + done, size - done, MSG_NOSIGNAL)
+                          : ::read(fd, data + done, size - done);
+    if (n < 0 && errno == EINTR)
+      continue;
+    if (n <= 0)
+      return (false);
+    done += static_cast<std::size_t>(n);
+  }
+  return (true);
+}
+
 [[noreturn]] void runChild(const std::string& path, const std::string& reader, int fd)
 {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL); // a reader left alone never holds stdout long
@@ -207,47 +223,21 @@ bool takeReply(const std::string& path, const std::string& reply,
   return (checkCloudLayout(cloud, path, error));
 }
 
-/** Repeat \a step(done), a send or a read from byte \a done on, until \a size bytes
- * moved; false at the end of the stream or on an error. */
-template <typename Step>
-bool moveAll(std::size_t size, const Step& step)
-{
-  for (std::size_t done = 0; done < size;) {
-    const ssize_t n = step(done);
-    if (n < 0 && errno == EINTR)
-      continue;
-    if (n <= 0)
-      return (false);
-    done += static_cast<std::size_t>(n);
-  }
-  return (true);
-}
-
 bool sendFramed(int fd, const std::string& bytes)
 {
-  const auto sendAll = [fd](const char* data, std::size_t size) {
-    return (moveAll(size, [&](std::size_t done) {
-      return (::send(fd, data + done, size - done, MSG_NOSIGNAL));
-    }));
-  };
-  const std::uint64_t size = bytes.size();
-  return (sendAll(reinterpret_cast<const char*>(&size), sizeof(size)) &&
-          sendAll(bytes.data(), bytes.size()));
+  std::uint64_t size = bytes.size();
+  return (transfer(fd, reinterpret_cast<char*>(&size), sizeof(size), true) &&
+          transfer(fd, const_cast<char*>(bytes.data()), bytes.size(), true));
 }
 
 bool readFramed(int fd, std::string& bytes)
 {
-  const auto readAll = [fd](char* data, std::size_t size) {
-    return (moveAll(size, [&](std::size_t done) {
-      return (::read(fd, data + done, size - done));
-    }));
-  };
   std::uint64_t size = 0;
-  if (!readAll(reinterpret_cast<char*>(&size), sizeof(size)) ||
+  if (!transfer(fd, reinterpret_cast<char*>(&size), sizeof(size), false) ||
       size >= (std::uint64_t{1} << 40))
     return (false);
   bytes.resize(static_cast<std::size_t>(size));
-  return (readAll(bytes.data(), bytes.size()));
+  return (transfer(fd, bytes.data(), bytes.size(), false));
 }
 
 } // namespace detail

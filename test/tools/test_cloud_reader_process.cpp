@@ -66,6 +66,16 @@ TEST(CloudReaderProcess, ReadsAsTheCallerWouldAndFallsBackWhenKilled)
   EXPECT_FALSE(pcl::phaser::loadCloud(dir + "/bad.pcd", through, &error));
   EXPECT_NE(error.find("bad.pcd"), std::string::npos) << error;
   EXPECT_EQ(pcl::phaser::cloudReaderPid(), pid); // a bad file does not stop it
+  // uchar blue before red: PCL's PLY reader aborts, a clean error through the reader
+  // too.
+  std::ofstream(dir + "/abort.ply")
+      << "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+         "property float z\nproperty uchar blue\nproperty uchar green\n"
+         "property uchar red\nend_header\n1 2 3 4 5 6\n6 7 8 9 10 11\n";
+  EXPECT_FALSE(pcl::phaser::loadCloud(dir + "/abort.ply", through, &error));
+  EXPECT_NE(error.find("abort.ply': PCL's PLY reader crashed"), std::string::npos)
+      << error;
+  EXPECT_EQ(pcl::phaser::cloudReaderPid(), pid);
 
   ::kill(pid, SIGKILL);
   ::waitpid(pid, nullptr, 0);
