@@ -10,9 +10,9 @@
 #include "batch_pairs.h"
 #include "batch_records.h"
 #include "batch_runner.h"
+#include "cloud_reading.h"
 #include "engine_options.h"
 #include "loop_triangles.h"
-#include "cloud_reading.h"
 
 #include <pcl/console/print.h>
 
