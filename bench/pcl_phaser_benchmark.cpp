@@ -16,6 +16,7 @@
 #include "protocol.h"
 #include "report.h"
 #include "revisits.h"
+#include "transform_file.h"
 
 #include <pcl/common/transforms.h>
 #include <pcl/console/parse.h>
