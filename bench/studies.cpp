@@ -14,6 +14,7 @@
 #include "protocol.h"
 #include "report.h"
 #include "subcommands.h"
+#include "transform_file.h"
 
 #include <pcl/common/transforms.h>
 #include <pcl/console/print.h>

@@ -23,6 +23,7 @@
 #include "pcl_phaser_align_steps.h"
 #include "result_json.h"
 #include "scan_simulator.h"
+#include "transform_file.h"
 
 #include <pcl_phaser/phaser_registration.h>
 

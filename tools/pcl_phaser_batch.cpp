@@ -10,7 +10,7 @@
 #include "batch_pairs.h"
 #include "batch_records.h"
 #include "batch_runner.h"
-#include "cloud_reader_process.h"
+#include "cloud_reading.h"
 #include "engine_options.h"
 #include "loop_triangles.h"
 
@@ -278,7 +278,7 @@ int main(int argc, char** argv)
   if (argc >= 2 && std::string(argv[1]) == "triangles")
     return triangles(argc, argv);
   // While this process is small: it reads every cloud from here on
-  // (cloud_reader_process.h).
+  // (io/cloud_reading.h).
   pcl::phaser::startCloudReader();
   Given given;
   if (const int rc = collect(argc, argv, given); rc != batch::kOk)

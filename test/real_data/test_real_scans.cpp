@@ -12,6 +12,7 @@
 #include "cloud_reading.h"
 #include "protocol.h"
 #include "real_data_support.h"
+#include "transform_file.h"
 
 #include <pcl_phaser/phaser_registration.h>
 

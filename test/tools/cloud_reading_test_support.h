@@ -2,13 +2,14 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * What the tests of tools/cloud_reading.h share: a temporary directory, a PCL console
+ * What the tests of io/cloud_reading.h share: a temporary directory, a PCL console
  * silencer, file helpers, sample headers and clouds.
  */
 #pragma once
 
 #include "../registration/test_data.h"
 #include "cloud_reading.h"
+#include "transform_file.h"
 
 #include <pcl/common/io.h>
 #include <pcl/console/print.h>

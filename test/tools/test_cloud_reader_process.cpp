@@ -2,11 +2,10 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * The reader process (cloud_reader_process.h): clouds read through it equal those read
+ * The reader process (io/cloud_reading.h): clouds read through it equal those read
  * directly, a file that makes PCL's reader fail is a clean error through it too, and
  * when it is killed loadCloud() reads by itself again.
  */
-#include "cloud_reader_process.h"
 #include "cloud_reading.h"
 
 #include <pcl/io/pcd_io.h>
@@ -67,6 +66,16 @@ TEST(CloudReaderProcess, ReadsAsTheCallerWouldAndFallsBackWhenKilled)
   EXPECT_FALSE(pcl::phaser::loadCloud(dir + "/bad.pcd", through, &error));
   EXPECT_NE(error.find("bad.pcd"), std::string::npos) << error;
   EXPECT_EQ(pcl::phaser::cloudReaderPid(), pid); // a bad file does not stop it
+  // uchar blue before red: PCL's PLY reader aborts, a clean error through the reader
+  // too.
+  std::ofstream(dir + "/abort.ply")
+      << "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+         "property float z\nproperty uchar blue\nproperty uchar green\n"
+         "property uchar red\nend_header\n1 2 3 4 5 6\n6 7 8 9 10 11\n";
+  EXPECT_FALSE(pcl::phaser::loadCloud(dir + "/abort.ply", through, &error));
+  EXPECT_NE(error.find("abort.ply': PCL's PLY reader crashed"), std::string::npos)
+      << error;
+  EXPECT_EQ(pcl::phaser::cloudReaderPid(), pid);
 
   ::kill(pid, SIGKILL);
   ::waitpid(pid, nullptr, 0);

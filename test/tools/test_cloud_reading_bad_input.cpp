@@ -293,7 +293,7 @@ TEST(CloudIoBadInput, PlyCountsAndGridsThatLie)
            "1 2 3\n4 5 6\n1 357913941\n0\n0\n1 0\n",
        "index 357913941 is outside"},
       // ... and this one wraps to offset 8: PCL silently copies the wrong bytes (the
-      // range-grid check of tools/cloud_reading.cpp).
+      // range-grid check of io/reader_child.cpp).
       {"range_grid_index_wraps_silently.ply",
        plyXYZ(ascii, "2", gridInfo("2", "2"), rangeGrid("4")) +
            "1 2 3\n4 5 6\n1 357913942\n0\n0\n1 0\n",

@@ -12,6 +12,7 @@
 #include "json_test_reader.h"
 #include "result_field_keys.h"
 #include "scan_simulator.h"
+#include "transform_file.h"
 
 #include <pcl/common/io.h>
 #include <pcl/point_types.h>
