@@ -21,6 +21,7 @@
 #include "pcl_phaser_align_options.h"
 #include "pcl_phaser_align_screenshot.h"
 #include "pcl_phaser_align_steps.h"
+#include "process_memory.h"
 #include "result_json.h"
 #include "scan_simulator.h"
 #include "transform_file.h"
@@ -416,6 +417,7 @@ int run(const Options& opt, Result& res)
 
 int main(int argc, char** argv)
 {
+  pcl::phaser::preferHugePages();
   if (find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
     printHelp(argv[0]);
     return (kOk);

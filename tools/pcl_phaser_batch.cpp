@@ -13,6 +13,7 @@
 #include "cloud_reading.h"
 #include "engine_options.h"
 #include "loop_triangles.h"
+#include "process_memory.h"
 
 #include <pcl/console/print.h>
 
@@ -277,6 +278,7 @@ int main(int argc, char** argv)
     return merge(argc, argv);
   if (argc >= 2 && std::string(argv[1]) == "triangles")
     return triangles(argc, argv);
+  pcl::phaser::preferHugePages(); // before the reader process: it inherits the heap
   // While this process is small: it reads every cloud from here on
   // (io/cloud_reading.h).
   pcl::phaser::startCloudReader();
