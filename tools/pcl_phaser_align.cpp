@@ -155,12 +155,13 @@ pcl::PointCloud<pcl::PointXYZRGB>::Ptr overlayOf(const pcl::PointCloud<PointT>& 
 }
 
 /** ICP from res.global's pose into \a res.icp with align::toolIcpSettings(): the
- *  clouds thinned, the correspondence distance from the global pose's covariance. */
+ *  clouds thinned, the correspondence distance from the global pose's covariance.
+ *  \return kOk, or kUsage (after fail()) when the ICP module cannot be loaded */
 template <typename PointT>
-void refineWithIcp(const typename pcl::PointCloud<PointT>::Ptr& source,
-                   const typename pcl::PointCloud<PointT>::Ptr& target,
-                   const Options& opt, pcl::PhaserRegistration<PointT, PointT>& phaser,
-                   Result& res)
+int refineWithIcp(const typename pcl::PointCloud<PointT>::Ptr& source,
+                  const typename pcl::PointCloud<PointT>::Ptr& target,
+                  const Options& opt, pcl::PhaserRegistration<PointT, PointT>& phaser,
+                  Result& res)
 {
   print_highlight("Refining with %s ICP ",
                   opt.icp_point ? "point-to-point" : "point-to-plane");
@@ -168,12 +169,17 @@ void refineWithIcp(const typename pcl::PointCloud<PointT>::Ptr& source,
                                                   phaser.getCovariance(), *source);
   icp.threads = phaser.getNumberOfThreads();
   align::IcpRun run;
-  align::refine<PointT>(source, target, res.global.transform, icp, res.icp, run);
+  std::string why;
+  if (!align::refineInModule<PointT>(source, target, res.global.transform, icp, res.icp,
+                                     run, why))
+    return (print_info("[failed]\n"),
+            fail(res.error, kUsage, "Cannot refine with ICP: %s", why.c_str()));
   print_info("(%zu + %zu points, correspondences within %.3g m) [done, ",
              run.source_points, run.target_points, icp.max_distance);
   print_value("%g", res.icp.time_ms);
   print_info(" ms : %d iterations, %s]\n", run.iterations,
              res.icp.converged ? "converged" : "NOT converged");
+  return (kOk);
 }
 
 template <typename PointT>
@@ -191,7 +197,8 @@ int compute(const pcl::PCLPointCloud2& source_blob,
   pcl::PhaserRegistration<PointT, PointT> phaser;
   registerGlobally<PointT>(phaser, source, target, opt, res);
   if (opt.icp && res.global.converged)
-    refineWithIcp<PointT>(source, target, opt, phaser, res);
+    if (const int rc = refineWithIcp<PointT>(source, target, opt, phaser, res))
+      return (rc);
   res.overlay = overlayOf(*source, *target, res.final());
   return (kOk);
 }

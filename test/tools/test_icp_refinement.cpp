@@ -9,7 +9,7 @@
  */
 #include "../registration/test_data.h"
 #include "cloud_reading.h"
-#include "pcl_phaser_align_icp.h"
+#include "icp_refinement.h"
 #include "scan_simulator.h"
 
 #include <pcl_phaser/phaser_registration.h>
