@@ -28,60 +28,6 @@ const std::vector<Bin>& bins()
   return all;
 }
 
-namespace {
-
-/** Chi-square 95 % points: 6 dof (the 6-D error) and 3 dof (one block). */
-constexpr double kChi2Six95 = 12.5916;
-constexpr double kChi2Three95 = 7.8147;
-
-/** How the covariance of the converged trials of one method and bin covers their
- *  errors. */
-struct NeesSummary {
-  int n = 0, inside = 0, inside_rot = 0, inside_trans = 0;
-  double mean = NAN, median = NAN, mean_rot = NAN, mean_trans = NAN;
-  double rms_rre = NAN, rms_rte = NAN, sigma_rot = NAN, sigma_trans = NAN;
-};
-
-NeesSummary summarizeNees(const std::vector<RevisitTrial>& trials,
-                          const std::string& method, const Bin& bin)
-{
-  NeesSummary s;
-  std::vector<double> nees, sigma_rot, sigma_trans;
-  double rot = 0.0, trans = 0.0, rre2 = 0.0, rte2 = 0.0;
-  for (const RevisitTrial& t : trials) {
-    if (t.method != method || t.pair.dist < bin.lo || t.pair.dist >= bin.hi ||
-        !t.converged || t.nees.nees < 0.0)
-      continue;
-    ++s.n;
-    nees.push_back(t.nees.nees);
-    s.inside += t.nees.nees <= kChi2Six95;
-    s.inside_rot += t.nees.nees_rot >= 0.0 && t.nees.nees_rot <= kChi2Three95;
-    s.inside_trans += t.nees.nees_trans >= 0.0 && t.nees.nees_trans <= kChi2Three95;
-    rot += t.nees.nees_rot;
-    trans += t.nees.nees_trans;
-    rre2 += t.rre * t.rre;
-    rte2 += t.rte * t.rte;
-    sigma_rot.push_back(t.nees.sigma_rot_deg);
-    sigma_trans.push_back(t.nees.sigma_trans_m);
-  }
-  if (s.n == 0)
-    return s;
-  double sum = 0.0;
-  for (double v : nees)
-    sum += v;
-  s.mean = sum / s.n;
-  s.median = median(nees);
-  s.mean_rot = rot / s.n;
-  s.mean_trans = trans / s.n;
-  s.rms_rre = std::sqrt(rre2 / s.n);
-  s.rms_rte = std::sqrt(rte2 / s.n);
-  s.sigma_rot = median(sigma_rot);
-  s.sigma_trans = median(sigma_trans);
-  return s;
-}
-
-} // namespace
-
 void writeNeesTable(std::ostream& out, const std::vector<RevisitTrial>& trials,
                     const std::vector<std::string>& methods)
 {
@@ -92,7 +38,8 @@ void writeNeesTable(std::ostream& out, const std::vector<RevisitTrial>& trials,
              "mean NEES rot. / trans. (3)", "RMS RRE (deg)", "RMS RTE (m)",
              "median sigma_rot (deg)", "median sigma_trans (m)"},
             methods, [&](const std::string& method, const Bin& bin) {
-              const NeesSummary s = summarizeNees(trials, method, bin);
+              const NeesSummary s = summarizeNees(select(
+                  trials, [&](const RevisitTrial& t) { return t.in(method, bin); }));
               if (s.n == 0)
                 return;
               const auto share = [&](int k) {

@@ -24,24 +24,25 @@ constexpr double kRreThreshold = 5.0;  ///< deg, both success levels
 constexpr double kRteThresholdA = 2.0; ///< m, loop-closure level
 constexpr double kRteThresholdB = 0.6; ///< m, the benchmark's usual level
 
-/** One method on one pair. */
-struct RevisitTrial {
-  std::string method;
-  RevisitPair pair;
-  double rre = 0.0, rte = 0.0, ms = 0.0, score = 0.0;
-  bool converged = false;
-  Eigen::Matrix4d estimate = Eigen::Matrix4d::Identity(); ///< T_target_source
-  std::optional<PhaserResult> phaser; ///< pcl_phaser's result (MethodResult)
-  NeesFigures nees; ///< of a converged trial with a covariance (pcl_phaser's)
-
-  bool successA() const { return rre < kRreThreshold && rte < kRteThresholdA; }
-  bool successB() const { return rre < kRreThreshold && rte < kRteThresholdB; }
-};
-
 /** A range of the distance between the scans, [lo, hi). */
 struct Bin {
   std::string label;
   double lo, hi;
+};
+
+/** One method on one pair; success: @2 m (RRE < kRreThreshold, RTE < kRteThresholdA).
+ */
+struct RevisitTrial : Judged {
+  RevisitPair pair;
+
+  /** \brief Success @0.6 m: RTE < kRteThresholdB. */
+  bool successB() const { return rre < kRreThreshold && rte < kRteThresholdB; }
+  /** \brief Whether this is a trial of \a name on a pair whose distance is in \a bin.
+   */
+  bool in(const std::string& name, const Bin& bin) const
+  {
+    return method == name && pair.dist >= bin.lo && pair.dist < bin.hi;
+  }
 };
 
 /** \brief The distance bins of the tables: four disjoint ones, then <10 m, >=10 m, all.
