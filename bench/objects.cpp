@@ -208,13 +208,10 @@ void writePairTable(std::ostream& md, const std::vector<ObjectTrial>& trials,
                     const std::vector<ObjectPair>& pairs,
                     const std::vector<std::string>& methods)
 {
-  md << "| source | target | overlap |";
+  std::vector<std::string> columns = {"source", "target", "overlap"};
   for (const std::string& method : methods)
-    md << " " << method << " RRE (deg) / RTE (mm) |";
-  md << "\n|---|---|---|";
-  for (std::size_t i = 0; i < methods.size(); ++i)
-    md << "---|";
-  md << "\n";
+    columns.push_back(method + " RRE (deg) / RTE (mm)");
+  md << tableHeader(columns);
   for (const ObjectPair& pair : pairs) {
     md << "| " << pair.source << " | " << pair.target << " | "
        << formatValue("%.2f", pair.overlap) << " |";

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <sstream>
 
 namespace pcl::phaser {
 namespace bench {
@@ -149,10 +150,9 @@ void writeSummary(std::ostream& out, const std::vector<Trial>& trials, bool by_s
         by_set ? std::make_pair(t.set, 0.0) : std::make_pair(t.sweep, t.value);
     groups[key][t.method].push_back(&t);
   }
-  out << (by_set ? "| pair / scan " : "| condition ")
-      << "| method | trials | success | median RRE (deg) | median RTE (m) | median "
-         "time "
-         "(ms) | p90 time (ms) |\n|---|---|---|---|---|---|---|---|\n";
+  out << tableHeader({by_set ? "pair / scan" : "condition", "method", "trials",
+                      "success", "median RRE (deg)", "median RTE (m)",
+                      "median time (ms)", "p90 time (ms)"});
   for (const auto& [key, per_method] : groups) {
     std::string name = key.first;
     if (!by_set && key.first == "unrelated")
@@ -265,13 +265,11 @@ std::vector<std::string> writePlots(const std::string& dir,
       }
       dat << "\n\n";
     }
-    std::ofstream gp(base + ".gp");
+    std::ostringstream gp;
     const char* xlabel = sweep == "noise"      ? "PSNR (dB)"
                          : sweep == "sparsity" ? "points kept (%)"
                                                : "overlap (% of the azimuth circle)";
-    gp << "set terminal pngcairo size 1000,420 font ',11' noenhanced\nset output '"
-       << base
-       << ".png'\nset multiplot layout 1,2 title 'pcl_phaser_bench compare: " << sweep
+    gp << "set multiplot layout 1,2 title 'pcl_phaser_bench compare: " << sweep
        << " sweep'\nset key bottom left\nset grid\nset xlabel '" << xlabel
        << "'\nset xrange [*:*] reverse\n"
        << "set ylabel 'success (%)'\nset yrange [0:105]\n"
@@ -281,15 +279,19 @@ std::vector<std::string> writePlots(const std::string& dir,
        << "plot for [i=0:" << series.size() - 1 << "] '" << base
        << ".dat' index i using 1:3 with linespoints title columnheader(1)\n"
        << "unset multiplot\n";
-    gp.close();
-    if (const std::string png = runGnuplot(base); !png.empty())
+    if (const std::string png = plotPng(base, "1000,420", gp.str()); !png.empty())
       pngs.push_back(png);
   }
   return pngs;
 }
 
-std::string runGnuplot(const std::string& base)
+std::string plotPng(const std::string& base, const char* size,
+                    const std::string& script)
 {
+  std::ofstream(base + ".gp") << "set terminal pngcairo size " << size
+                              << " font ',11' noenhanced\nset output '" << base
+                              << ".png'\n"
+                              << script;
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0)
     return "";
   return std::system(("gnuplot '" + base + ".gp'").c_str()) == 0 ? base + ".png" : "";
@@ -309,6 +311,16 @@ std::string yardstickLine(double fft_ms)
 {
   return "Yardstick: one 128^3 real-to-complex FFT (FFTW_MEASURE, 1 thread) = " +
          formatValue("%.2f", fft_ms) + " ms (FFT128).\n\n";
+}
+
+std::string tableHeader(const std::vector<std::string>& columns)
+{
+  std::string names = "|", rule = "|";
+  for (const std::string& column : columns) {
+    names += " " + column + " |";
+    rule += "---|";
+  }
+  return names + "\n" + rule + "\n";
 }
 
 std::string formatValue(const char* fmt, double value)

@@ -114,9 +114,11 @@ void writeDetectionSummary(std::ostream& out, const std::vector<Trial>& trials,
 std::vector<std::string> writePlots(const std::string& dir,
                                     const std::vector<Trial>& trials);
 
-/** \brief Runs gnuplot on \a base.gp when gnuplot is installed. \return base.png, or ""
- *  when gnuplot is missing or failed */
-std::string runGnuplot(const std::string& base);
+/** \brief Writes \a base.gp: a pngcairo terminal of \a size ("W,H") writing base.png,
+ *  then \a script; runs it when gnuplot is installed. \return base.png, or "" when
+ *  gnuplot is missing or failed */
+std::string plotPng(const std::string& base, const char* size,
+                    const std::string& script);
 
 /** \brief The markdown stream of a study: \a file opened on \a path, or stdout when
  *  \a path is empty; "Command: `command`" and a blank line written to it. */
@@ -125,6 +127,9 @@ std::ostream& openMarkdown(const std::string& path, std::ofstream& file,
 
 /** \brief The paragraph of the yardstick: one 128^3 FFT took \a fft_ms ms (FFT128). */
 std::string yardstickLine(double fft_ms);
+
+/** \brief A markdown table's header: "| A | B |" and "|---|---|", lines ended. */
+std::string tableHeader(const std::vector<std::string>& columns);
 
 /** \brief \a value printed with the printf format \a fmt, or "-" when not finite. */
 std::string formatValue(const char* fmt, double value);

@@ -7,7 +7,9 @@
  * as the compare study runs them; success at 2 m and at 0.6 m (RRE < 5 deg both), by
  * bins of the distance between the scans, with the converged flag's false accepts and
  * the times in units of one 128^3 FFT. With --derived-pairs the pairs are derived from
- * poses_T_world_lidar.txt instead (derivePairs() in revisits.h).
+ * poses_T_world_lidar.txt instead (derivePairs() in revisits.h). How the covariance of
+ * the converged trials covers their errors (the NEES table), against references
+ * corrected for the odometry's drift or not.
  */
 #include "cloud_reading.h"
 #include "fft_yardstick.h"
@@ -16,7 +18,6 @@
 #include "report.h"
 #include "result_csv.h"
 #include "revisits.h"
-#include "revisits_calibration.h"
 #include "subcommands.h"
 
 #include <pcl/console/print.h>
@@ -43,6 +44,129 @@ namespace {
 namespace console = pcl::console;
 
 const char* const kFolder = "lidar/balm_handheld";
+
+constexpr double kRreThreshold = 5.0;  ///< deg, both success levels
+constexpr double kRteThresholdA = 2.0; ///< m, loop-closure level
+constexpr double kRteThresholdB = 0.6; ///< m, the benchmark's usual level
+
+/** A range of the distance between the scans, [lo, hi). */
+struct Bin {
+  std::string label;
+  double lo, hi;
+};
+
+/** One method on one pair; success: @2 m (RRE < kRreThreshold, RTE < kRteThresholdA).
+ */
+struct RevisitTrial : Judged {
+  RevisitPair pair;
+
+  /** \brief Success @0.6 m: RTE < kRteThresholdB. */
+  bool successB() const { return rre < kRreThreshold && rte < kRteThresholdB; }
+  /** \brief Whether this is a trial of \a name on a pair whose distance is in \a bin.
+   */
+  bool in(const std::string& name, const Bin& bin) const
+  {
+    return method == name && pair.dist >= bin.lo && pair.dist < bin.hi;
+  }
+};
+
+/** The distance bins of the tables: four disjoint ones, then <10 m, >=10 m, all. */
+const std::vector<Bin>& bins()
+{
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  static const std::vector<Bin> all = {
+      {"[0, 5) m", 0.0, 5.0},     {"[5, 10) m", 5.0, 10.0}, {"[10, 15) m", 10.0, 15.0},
+      {"[15, inf) m", 15.0, inf}, {"<10 m", 0.0, 10.0},     {">=10 m", 10.0, inf},
+      {"all", 0.0, inf}};
+  return all;
+}
+
+/** \brief Writes a Markdown table: the header "| method | distance | " and \a columns,
+ *  then \a row(method, bin) for every method and distance bin, in that order. */
+template <typename Row>
+void writeRows(std::ostream& out, std::vector<std::string> columns,
+               const std::vector<std::string>& methods, const Row& row)
+{
+  columns.insert(columns.begin(), {"method", "distance"});
+  out << tableHeader(columns);
+  for (const std::string& method : methods)
+    for (const Bin& bin : bins())
+      row(method, bin);
+}
+
+/** The covariance's calibration per method (those with one) and distance bin:
+ *  converged trials, mean and median 6-D NEES, the shares inside the 95 % ellipsoids
+ *  (6-D, and each block in 3-D), mean NEES per block, RMS errors, median sigmas. */
+void writeNeesTable(std::ostream& out, const std::vector<RevisitTrial>& trials,
+                    const std::vector<std::string>& methods)
+{
+  out << '\n';
+  writeRows(out,
+            {"converged with covariance", "mean NEES (6)", "median NEES",
+             "inside 95 % (6-D, 12.59)", "inside 95 % rot. / trans. (3-D, 7.81)",
+             "mean NEES rot. / trans. (3)", "RMS RRE (deg)", "RMS RTE (m)",
+             "median sigma_rot (deg)", "median sigma_trans (m)"},
+            methods, [&](const std::string& method, const Bin& bin) {
+              const NeesSummary s = summarizeNees(select(
+                  trials, [&](const RevisitTrial& t) { return t.in(method, bin); }));
+              if (s.n == 0)
+                return;
+              const auto share = [&](int k) {
+                return formatValue("%.1f %%", 100.0 * k / s.n);
+              };
+              out << "| " << method << " | " << bin.label << " | " << s.n << " | "
+                  << formatValue("%.2f", s.mean) << " | "
+                  << formatValue("%.2f", s.median) << " | " << share(s.inside) << " | "
+                  << share(s.inside_rot) << " / " << share(s.inside_trans) << " | "
+                  << formatValue("%.2f", s.mean_rot) << " / "
+                  << formatValue("%.2f", s.mean_trans) << " | "
+                  << formatValue("%.3f", s.rms_rre) << " | "
+                  << formatValue("%.3f", s.rms_rte) << " | "
+                  << formatValue("%.3f", s.sigma_rot) << " | "
+                  << formatValue("%.3f", s.sigma_trans) << " |\n";
+            });
+}
+
+/** The reference poses of \a pairs corrected for the drift of -reference-drift; false
+ *  (with a message) when a pair's scans have no pose. */
+bool correctReferences(const Eigen::Vector3d& drift, const std::vector<ScanPose>& poses,
+                       std::vector<RevisitPair>& pairs, std::string& origin)
+{
+  for (RevisitPair& pair : pairs)
+    if (!correctDrift(pair, poses, drift)) {
+      pcl::console::print_error("revisits: no odometry pose for %s -> %s\n",
+                                pair.source.c_str(), pair.target.c_str());
+      return false;
+    }
+  origin += "; reference poses corrected for a linear odometry drift of (" +
+            formatValue("%.4g", drift.x()) + ", " + formatValue("%.4g", drift.y()) +
+            ", " + formatValue("%.4g", drift.z()) + ") m per scan index";
+  return true;
+}
+
+/** "Odometry drift fitted ..." for the converged trials of \a method (fitDrift()). */
+std::string driftLine(const std::vector<RevisitTrial>& trials,
+                      const std::string& method, const std::vector<ScanPose>& poses)
+{
+  std::vector<RevisitPair> pairs;
+  std::vector<Eigen::Matrix4d> estimates;
+  for (const RevisitTrial& t : trials)
+    if (t.method == method && t.converged) {
+      pairs.push_back(t.pair);
+      estimates.push_back(t.estimate);
+    }
+  if (pairs.empty() || poses.empty())
+    return "";
+  const Eigen::Vector3d d = fitDrift(pairs, estimates, poses);
+  return "Linear odometry drift of the reference poses that best explains the "
+         "translation errors of the " +
+         std::to_string(pairs.size()) + " converged " + method +
+         " trials (fitDrift(), world frame): (" + formatValue("%.4g", d.x()) + ", " +
+         formatValue("%.4g", d.y()) + ", " + formatValue("%.4g", d.z()) +
+         ") m per scan index, " + formatValue("%.3f", 174.0 * d.norm()) +
+         " m over scans 0-174 (pass it as --reference-drift DX,DY,DZ to judge against "
+         "corrected references).\n";
+}
 
 /** The study's options; voxel: 1 m by default, as for the compare study's LiDAR. */
 struct RevisitOptions : StudyOptions {
@@ -78,17 +202,18 @@ bool parseRevisitOptions(BenchArguments& args, RevisitOptions& o)
 }
 
 /** The pairs of the study: those of the pairs file or, with --derived-pairs, those
- * derivePairs() finds in the poses; \a origin says which, for the report. False (with
- * a message) on an unreadable or malformed file. */
+ * derivePairs() finds in the poses; \a origin says which, for the report. The poses
+ * file, when present, into \a poses (the drift correction and fit use them too). False
+ * (with a message) on an unreadable or malformed file. */
 bool loadPairs(const RevisitOptions& o, const std::string& pairs_file,
-               const std::string& poses_file, std::vector<RevisitPair>& pairs,
-               std::string& origin)
+               const std::string& poses_file, std::vector<ScanPose>& poses,
+               std::vector<RevisitPair>& pairs, std::string& origin)
 {
   std::string error;
   std::vector<RevisitPair> listed;
-  std::vector<ScanPose> poses;
   if (!readPairs(pairs_file, listed, error) ||
-      (o.derived_pairs > 0 && !readScanPoses(poses_file, poses, error))) {
+      (std::filesystem::exists(poses_file) &&
+       !readScanPoses(poses_file, poses, error))) {
     console::print_error("revisits: %s\n", error.c_str());
     return false;
   }
@@ -252,11 +377,8 @@ std::string writePlot(const std::string& dir, const std::vector<RevisitTrial>& t
     dat << "\n\n";
   }
   dat.close();
-  std::ofstream gp(base + ".gp");
-  gp << "set terminal pngcairo size 900,500 font ',11' noenhanced\nset output '" << base
-     << ".png'\nset title 'pcl_phaser_bench revisits: revisit pairs (RRE < 5 deg; "
-        "solid: "
-        "RTE "
+  std::ostringstream gp;
+  gp << "set title 'pcl_phaser_bench revisits: revisit pairs (RRE < 5 deg; solid: RTE "
         "< 2 m, dashed: RTE < 0.6 m)'\nset key outside right\nset grid\n"
      << "set xlabel 'distance between the scans'\nset xrange [-0.3:"
      << kDisjointBins - 0.7 << "]\nset ylabel 'success (%)'\nset yrange [0:105]\nplot ";
@@ -267,8 +389,7 @@ std::string writePlot(const std::string& dir, const std::vector<RevisitTrial>& t
        << " using 1:4 with linespoints lc " << i + 1 << " dt 2 pt 6 title '"
        << methods[i] << " @0.6 m'";
   gp << "\n";
-  gp.close();
-  return runGnuplot(base);
+  return plotPng(base, "900,500", gp.str());
 }
 
 void writeReport(std::ostream& md, const std::vector<RevisitTrial>& trials,
@@ -324,15 +445,10 @@ int runRevisitsStudy(BenchArguments& args)
       return 0;
     }
   std::vector<RevisitPair> pairs;
+  std::vector<ScanPose> poses;
   std::string origin;
-  if (!loadPairs(o, pairs_file, poses_file, pairs, origin))
+  if (!loadPairs(o, pairs_file, poses_file, poses, pairs, origin))
     return 1;
-  std::vector<ScanPose> poses; // for the drift correction and fit, if present
-  std::string error;
-  if (std::filesystem::exists(poses_file) && !readScanPoses(poses_file, poses, error)) {
-    console::print_error("revisits: %s\n", error.c_str());
-    return 1;
-  }
   if (!o.drift.empty() &&
       !correctReferences(Eigen::Vector3d(o.drift[0], o.drift[1], o.drift[2]), poses,
                          pairs, origin))
