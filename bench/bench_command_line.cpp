@@ -36,14 +36,6 @@ const BenchOption kSharedOptions[] = {
      "position - i x drift) from the reference poses"},
 };
 
-/** \a text as a double into \a v; false unless it is all a finite number. */
-bool parseNumber(const std::string& text, double& v)
-{
-  char* end = nullptr;
-  v = std::strtod(text.c_str(), &end);
-  return !text.empty() && *end == '\0' && std::isfinite(v);
-}
-
 } // namespace
 
 BenchOption sharedOption(const char* name, const char* help)

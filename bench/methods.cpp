@@ -103,6 +103,34 @@ NeesFigures neesOf(const MethodResult& r, const Eigen::Matrix4d& truth)
   return f;
 }
 
+MethodSettings studySettings(const PhaserParameters& engine, double voxel,
+                             unsigned seed, int fpcs_seconds)
+{
+  MethodSettings settings;
+  settings.threads = engine.num_threads;
+  settings.voxel = voxel;
+  settings.seed = seed;
+  settings.fpcs_seconds = fpcs_seconds;
+  settings.engine = engine;
+  return settings;
+}
+
+Judged judge(const std::string& method, const MethodResult& r,
+             const Eigen::Matrix4d& truth)
+{
+  Judged j;
+  j.method = method;
+  j.rre = rreDeg(r.transformation, truth);
+  j.rte = rteM(r.transformation, truth);
+  j.ms = r.ms;
+  j.converged = r.converged;
+  j.score = r.score;
+  j.nees = neesOf(r, truth);
+  j.estimate = r.transformation;
+  j.phaser = r.phaser;
+  return j;
+}
+
 double elapsedMs(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -

@@ -72,6 +72,26 @@ struct NeesFigures {
  * r.covariance; all -1 when r.has_covariance is false. */
 NeesFigures neesOf(const MethodResult& r, const Eigen::Matrix4d& truth);
 
+/** \brief One method's registration of one pair judged against the pair's truth: what
+ *  every study records (compare's Trial, revisits' and objects' trials extend it). */
+struct Judged {
+  std::string method; ///< e.g. "phaser", "sacia+icp"
+  double rre = 0.0;   ///< rotation error (deg), rreDeg()
+  double rte = 0.0;   ///< translation error (m), rteM()
+  double ms = 0.0;
+  bool converged = false; ///< the method's own verdict
+  bool success = false;   ///< under the study's thresholds (set by the study)
+  double score = 0.0;     ///< the method's quality figure (see MethodResult)
+  NeesFigures nees;       ///< under the method's covariance, -1 without one
+  Eigen::Matrix4d estimate = Eigen::Matrix4d::Identity(); ///< T_target_source
+  std::optional<PhaserResult> phaser; ///< pcl_phaser's result (MethodResult)
+};
+
+/** \brief \a r of \a method judged against \a truth (T_target_source): errors, NEES,
+ *  the rest copied; success left false. */
+Judged judge(const std::string& method, const MethodResult& r,
+             const Eigen::Matrix4d& truth);
+
 using MethodFunction =
     std::function<MethodResult(const Cloud::ConstPtr& source,
                                const Cloud::ConstPtr& target, const MethodSettings&)>;
@@ -89,6 +109,11 @@ const std::vector<Method>& allMethods();
 
 /** \brief The method of allMethods() called \a name, or null. */
 const Method* findMethod(const std::string& name);
+
+/** \brief The settings a study starts from: \a engine (and its threads for every
+ *  method), PCL's leaf \a voxel, \a seed and the FPCS time limit \a fpcs_seconds. */
+MethodSettings studySettings(const PhaserParameters& engine, double voxel,
+                             unsigned seed, int fpcs_seconds);
 
 /** \brief pcl::IterativeClosestPoint from \a initial on clouds downsampled at
  * settings.voxel; max correspondence distance 2 voxels, 50 iterations. The time of the

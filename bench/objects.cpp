@@ -43,15 +43,6 @@ constexpr double kOverlapRadius = 0.002; ///< m: a source point the target saw t
 constexpr double kMinOverlap = 0.3;      ///< of the source's points, for a pair
 constexpr double kRightDeg = 5.0, kRightM = 0.005;
 
-struct ObjectOptions {
-  std::string data;
-  /** phaser_xyz: the views carry x y z only, so pcl::PhaserRegistration<PointXYZ>
-   *  (phaser would fuse an intensity channel of zeros) */
-  std::vector<std::string> methods;
-  PhaserParameters engine; ///< pcl_phaser's settings; its threads every method's
-  std::string csv;
-};
-
 /** \brief An ordered pair of views with its truth and overlap. */
 struct ObjectPair {
   std::string source, target;
@@ -59,28 +50,21 @@ struct ObjectPair {
   Eigen::Matrix4d truth = Eigen::Matrix4d::Identity(); ///< T_target_source
 };
 
-/** \brief One method on one pair. */
-struct ObjectTrial {
-  std::string method;
+/** \brief One method on one pair; success: right, RRE < 5 deg and RTE < 5 mm. */
+struct ObjectTrial : Judged {
   const ObjectPair* pair = nullptr;
-  double rre = 0.0, rte = 0.0, ms = 0.0;
-  bool converged = false;
-  bool right() const { return rre < kRightDeg && rte < kRightM; }
   bool counted() const { return pair->overlap >= kMinOverlap; } ///< one of the pairs
 };
 
-/** \brief Reads and checks the options; false when one is invalid (recorded in
- * \a args). */
-bool parseObjectOptions(BenchArguments& args, ObjectOptions& o)
+/** \brief Reads and checks the options (the others of StudyOptions keep their
+ *  defaults: seed 1, FPCS 10 s, the voxel kVoxel); false when one is invalid (recorded
+ *  in \a args). phaser_xyz by default: the views carry x y z only, so
+ *  pcl::PhaserRegistration<PointXYZ> (phaser would fuse an intensity channel of
+ *  zeros). */
+bool parseObjectOptions(BenchArguments& args, StudyOptions& o)
 {
-  o.data = args.data();
-  o.methods = args.list("--methods", {"phaser_xyz", "sacia", "prerejective"});
-  o.csv = args.text("--csv");
-  o.engine = args.engine(2);
-  args.check(!o.methods.empty(), "--methods: none given");
-  for (const std::string& m : o.methods)
-    args.check(findMethod(m) != nullptr, "--methods: unknown method " + m);
-  args.check(o.engine.num_threads >= 1, "--threads: every method's, >= 1");
+  readStudyOptions(args, o, {"phaser_xyz", "sacia", "prerejective"}, kVoxel);
+  checkStudyOptions(args, o, true);
   return args.ok();
 }
 
@@ -138,24 +122,16 @@ std::vector<ObjectPair> orderedPairs(const std::vector<ObjectView>& views,
   return pairs;
 }
 
-/** \brief The settings of every method: the object-scale voxel and the threads. */
-MethodSettings objectSettings(const ObjectOptions& o)
-{
-  MethodSettings settings; // pcl_phaser at its defaults but the threads
-  settings.threads = o.engine.num_threads;
-  settings.engine = o.engine;
-  settings.voxel = kVoxel;
-  return settings;
-}
-
 /** \brief Every pair by every method, after one untimed align of the first pair by
  * each method (the first align of a process plans its transforms); a CSV row each. */
-std::vector<ObjectTrial> runTrials(const ObjectOptions& o,
+std::vector<ObjectTrial> runTrials(const StudyOptions& o,
                                    const std::vector<ObjectPair>& pairs,
                                    const std::map<std::string, Cloud::Ptr>& clouds,
                                    std::ostream* csv)
 {
-  const MethodSettings settings = objectSettings(o);
+  // pcl_phaser at its defaults but the threads
+  const MethodSettings settings =
+      studySettings(o.engine, o.voxel, o.seed, o.fpcs_seconds);
   std::vector<ObjectTrial> trials;
   if (pairs.empty())
     return trials;
@@ -164,14 +140,14 @@ std::vector<ObjectTrial> runTrials(const ObjectOptions& o,
                           settings);
   for (const ObjectPair& pair : pairs)
     for (const std::string& name : o.methods) {
-      const MethodResult r = findMethod(name)->run(clouds.at(pair.source),
-                                                   clouds.at(pair.target), settings);
-      ObjectTrial t{name,
-                    &pair,
-                    rreDeg(r.transformation, pair.truth),
-                    rteM(r.transformation, pair.truth),
-                    r.ms,
-                    r.converged};
+      ObjectTrial t;
+      static_cast<Judged&>(t) =
+          judge(name,
+                findMethod(name)->run(clouds.at(pair.source), clouds.at(pair.target),
+                                      settings),
+                pair.truth);
+      t.pair = &pair;
+      t.success = t.rre < kRightDeg && t.rte < kRightM;
       std::fprintf(stderr,
                    "%s -> %s (overlap %.2f) %-12s RRE %6.2f deg RTE %7.2f mm "
                    "converged %d %6.0f ms\n",
@@ -181,46 +157,29 @@ std::vector<ObjectTrial> runTrials(const ObjectOptions& o,
         *csv << name << "," << pair.source << "," << pair.target << ","
              << formatValue("%.4f", pair.overlap) << "," << formatValue("%.4f", t.rre)
              << "," << formatValue("%.6f", t.rte) << "," << t.converged << ","
-             << t.right() << "," << formatValue("%.1f", t.ms) << std::endl;
+             << t.success << "," << formatValue("%.1f", t.ms) << std::endl;
       trials.push_back(t);
     }
   return trials;
 }
 
-/** \brief A method's trials summed up: on the pairs, and on the ordered pairs below
- * kMinOverlap. */
-struct MethodSummary {
-  int pairs = 0, right = 0, converged = 0, wrong = 0;
-  int others = 0, others_converged = 0;     ///< below kMinOverlap
-  double rre = 0.0, rte_mm = 0.0, ms = 0.0; ///< medians (errors: of the right ones)
+/** \brief A method's trials summed up: the Summary of the pairs, and the ordered
+ * pairs below kMinOverlap. */
+struct MethodSummary : Summary {
+  int others = 0, others_converged = 0; ///< below kMinOverlap
 };
 
-MethodSummary summarize(const std::vector<ObjectTrial>& trials,
-                        const std::string& method)
+MethodSummary summarizeMethod(const std::vector<ObjectTrial>& trials,
+                              const std::string& method)
 {
   MethodSummary s;
-  std::vector<double> rre, rte, ms;
-  for (const ObjectTrial& t : trials) {
-    if (t.method != method)
-      continue;
-    if (!t.counted()) {
+  static_cast<Summary&>(s) = summarize(select(
+      trials, [&](const ObjectTrial& t) { return t.method == method && t.counted(); }));
+  for (const ObjectTrial& t : trials)
+    if (t.method == method && !t.counted()) {
       ++s.others;
       s.others_converged += t.converged;
-      continue;
     }
-    ++s.pairs;
-    s.converged += t.converged;
-    s.wrong += t.converged && !t.right();
-    ms.push_back(t.ms);
-    if (t.right()) {
-      ++s.right;
-      rre.push_back(t.rre);
-      rte.push_back(1e3 * t.rte);
-    }
-  }
-  s.rre = median(rre);
-  s.rte_mm = median(rte);
-  s.ms = median(ms);
   return s;
 }
 
@@ -233,12 +192,14 @@ void writeMethodTable(std::ostream& md, const std::vector<ObjectTrial>& trials,
         "right (mm) | median time (ms) | median time (FFT128) | converged below 30 % "
         "overlap |\n|---|---|---|---|---|---|---|---|---|---|\n";
   for (const std::string& method : methods) {
-    const MethodSummary s = summarize(trials, method);
-    md << "| " << method << " | " << s.pairs << " | " << s.right << " | " << s.converged
-       << " | " << s.wrong << " | " << formatValue("%.2f", s.rre) << " | "
-       << formatValue("%.2f", s.rte_mm) << " | " << formatValue("%.0f", s.ms) << " | "
-       << formatValue("%.1f", s.ms / fft_ms) << " | " << s.others_converged << " / "
-       << s.others << " |\n";
+    const MethodSummary s = summarizeMethod(trials, method);
+    md << "| " << method << " | " << s.n << " | " << s.ok << " | "
+       << s.converged_ok + s.converged_failed << " | " << s.converged_failed << " | "
+       << formatValue("%.2f", s.median_rre) << " | "
+       << formatValue("%.2f", 1e3 * s.median_rte) << " | "
+       << formatValue("%.0f", s.median_ms) << " | "
+       << formatValue("%.1f", s.median_ms / fft_ms) << " | " << s.others_converged
+       << " / " << s.others << " |\n";
   }
 }
 
@@ -247,13 +208,10 @@ void writePairTable(std::ostream& md, const std::vector<ObjectTrial>& trials,
                     const std::vector<ObjectPair>& pairs,
                     const std::vector<std::string>& methods)
 {
-  md << "| source | target | overlap |";
+  std::vector<std::string> columns = {"source", "target", "overlap"};
   for (const std::string& method : methods)
-    md << " " << method << " RRE (deg) / RTE (mm) |";
-  md << "\n|---|---|---|";
-  for (std::size_t i = 0; i < methods.size(); ++i)
-    md << "---|";
-  md << "\n";
+    columns.push_back(method + " RRE (deg) / RTE (mm)");
+  md << tableHeader(columns);
   for (const ObjectPair& pair : pairs) {
     md << "| " << pair.source << " | " << pair.target << " | "
        << formatValue("%.2f", pair.overlap) << " |";
@@ -262,21 +220,20 @@ void writePairTable(std::ostream& md, const std::vector<ObjectTrial>& trials,
         if (t.method == method && t.pair == &pair)
           md << " " << formatValue("%.2f", t.rre) << " / "
              << formatValue("%.2f", 1e3 * t.rte) << (t.converged ? " c" : "")
-             << (t.right() || !t.counted() ? "" : " (wrong)") << " |";
+             << (t.success || !t.counted() ? "" : " (wrong)") << " |";
     md << "\n";
   }
 }
 
 /** \brief The command, the setup, the yardstick and the two tables. */
-void writeReport(std::ostream& md, const std::string& command, const ObjectOptions& o,
+void writeReport(std::ostream& md, const StudyOptions& o,
                  const std::vector<ObjectPair>& pairs,
                  const std::vector<ObjectTrial>& trials, double fft_ms)
 {
   const auto counted = std::count_if(pairs.begin(), pairs.end(), [](const auto& p) {
     return p.overlap >= kMinOverlap;
   });
-  md << "Command: `" << command << "`\n\n"
-     << "Objects: " << counted
+  md << "Objects: " << counted
      << " pairs, the ordered pairs of the Stanford bunny views "
      << "of " << kFolder
      << " whose source has >= 30 % of its points within 2 mm of the "
@@ -285,8 +242,7 @@ void writeReport(std::ostream& md, const std::string& command, const ObjectOptio
      << o.engine.num_threads << " threads; PCL's methods at a voxel of " << kVoxel
      << " m (normals 2 v, FPFH 5 v); pcl_phaser default-constructed but the threads. "
         "Each method aligned the first pair once, untimed, before the trials.\n\n"
-     << "Yardstick: one 128^3 real-to-complex FFT (FFTW_MEASURE, 1 thread) = "
-     << formatValue("%.2f", fft_ms) << " ms (FFT128).\n\n";
+     << yardstickLine(fft_ms);
   writeMethodTable(md, trials, o.methods, fft_ms);
   md << "\nPer ordered pair (c: converged; wrong: not right; below 0.30: not one of "
         "the pairs):\n\n";
@@ -296,7 +252,7 @@ void writeReport(std::ostream& md, const std::string& command, const ObjectOptio
 /** \brief Runs the study: the pairs by the methods, the report and the CSV. */
 int runObjectsStudy(BenchArguments& args)
 {
-  ObjectOptions o;
+  StudyOptions o;
   if (!parseObjectOptions(args, o))
     return args.fail();
   console::setVerbosityLevel(console::L_ERROR);
@@ -323,7 +279,8 @@ int runObjectsStudy(BenchArguments& args)
   }
   const std::vector<ObjectTrial> trials =
       runTrials(o, pairs, clouds, o.csv.empty() ? nullptr : &csv);
-  writeReport(std::cout, args.command(), o, pairs, trials, fft_ms);
+  std::ofstream no_file; // stdout
+  writeReport(openMarkdown("", no_file, args.command()), o, pairs, trials, fft_ms);
   return 0;
 }
 

@@ -12,29 +12,51 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <map>
+#include <sstream>
 
 namespace pcl::phaser {
 namespace bench {
 
-namespace {
+void readStudyOptions(BenchArguments& args, StudyOptions& o,
+                      std::vector<std::string> methods, double voxel)
+{
+  o.data = args.data();
+  o.methods = args.list("--methods", std::move(methods));
+  o.seed = static_cast<unsigned>(args.integer("--seed", 1));
+  o.fpcs_seconds = static_cast<int>(args.integer("--fpcs-time", 10));
+  o.voxel = args.number("--voxel", voxel);
+  o.csv = args.text("--csv");
+  o.markdown = args.text("--md");
+  o.plots = args.text("--plots");
+  o.engine = args.engine(2);
+}
 
-struct Summary {
-  int n = 0, ok = 0;
-  double median_rre = NAN, median_rte = NAN, median_ms = NAN, p90_ms = NAN;
-};
+void checkStudyOptions(BenchArguments& args, const StudyOptions& o,
+                       bool require_methods)
+{
+  args.check(!require_methods || !o.methods.empty(), "--methods: none given");
+  for (const std::string& m : o.methods)
+    args.check(findMethod(m) != nullptr, "--methods: unknown method " + m);
+  args.check(o.engine.num_threads >= 1, "--threads: every method's, >= 1");
+  args.check(o.fpcs_seconds >= 1, "--fpcs-time: >= 1");
+}
 
-Summary summarize(const std::vector<const Trial*>& group)
+Summary summarize(const std::vector<const Judged*>& group)
 {
   Summary s;
   std::vector<double> rre, rte, ms;
-  for (const Trial* t : group) {
+  for (const Judged* t : group) {
     ++s.n;
     ms.push_back(t->ms);
     if (t->success) {
       ++s.ok;
-      rre.push_back(t->rre_deg);
-      rte.push_back(t->rte_m);
+      s.converged_ok += t->converged;
+      rre.push_back(t->rre);
+      rte.push_back(t->rte);
+    } else {
+      s.converged_failed += t->converged;
     }
   }
   s.median_rre = median(rre);
@@ -43,6 +65,43 @@ Summary summarize(const std::vector<const Trial*>& group)
   s.p90_ms = quantile(ms, 0.9);
   return s;
 }
+
+NeesSummary summarizeNees(const std::vector<const Judged*>& group)
+{
+  constexpr double kChi2Six95 = 12.5916, kChi2Three95 = 7.8147; // 95 %: 6, 3 dof
+  NeesSummary s;
+  std::vector<double> nees, sigma_rot, sigma_trans;
+  double sum = 0.0, rot = 0.0, trans = 0.0, rre2 = 0.0, rte2 = 0.0;
+  for (const Judged* t : group) {
+    if (!t->converged || t->nees.nees < 0.0)
+      continue;
+    ++s.n;
+    nees.push_back(t->nees.nees);
+    sum += t->nees.nees;
+    s.inside += t->nees.nees <= kChi2Six95;
+    s.inside_rot += t->nees.nees_rot >= 0.0 && t->nees.nees_rot <= kChi2Three95;
+    s.inside_trans += t->nees.nees_trans >= 0.0 && t->nees.nees_trans <= kChi2Three95;
+    rot += t->nees.nees_rot;
+    trans += t->nees.nees_trans;
+    rre2 += t->rre * t->rre;
+    rte2 += t->rte * t->rte;
+    sigma_rot.push_back(t->nees.sigma_rot_deg);
+    sigma_trans.push_back(t->nees.sigma_trans_m);
+  }
+  if (s.n == 0)
+    return s;
+  s.mean = sum / s.n;
+  s.median = median(nees);
+  s.mean_rot = rot / s.n;
+  s.mean_trans = trans / s.n;
+  s.rms_rre = std::sqrt(rre2 / s.n);
+  s.rms_rte = std::sqrt(rte2 / s.n);
+  s.sigma_rot = median(sigma_rot);
+  s.sigma_trans = median(sigma_trans);
+  return s;
+}
+
+namespace {
 
 bool bySweepValue(const std::pair<std::string, double>& a,
                   const std::pair<std::string, double>& b)
@@ -67,9 +126,9 @@ void writeCsv(std::ostream& out, const std::vector<Trial>& trials)
         line, sizeof(line),
         "%s,%s,%g,%d,%s,%d,%.6f,%.6f,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g",
         t.set.c_str(), t.sweep.c_str(), t.value, t.pose, t.method.c_str(), t.bandwidth,
-        t.rre_deg, t.rte_m, t.ms, t.converged, t.success,
-        t.phaser ? std::nan("") : t.score, t.nees, t.nees_rot, t.nees_trans,
-        t.sigma_rot_deg, t.sigma_trans_m);
+        t.rre, t.rte, t.ms, t.converged, t.success, t.phaser ? std::nan("") : t.score,
+        t.nees.nees, t.nees.nees_rot, t.nees.nees_trans, t.nees.sigma_rot_deg,
+        t.nees.sigma_trans_m);
     out << line;
     writeResultCells(out, t.phaser ? &*t.phaser : nullptr);
     out << "\n";
@@ -84,17 +143,16 @@ void writeSummary(std::ostream& out, const std::vector<Trial>& trials, bool by_s
     if (std::find(methods.begin(), methods.end(), t.method) == methods.end())
       methods.push_back(t.method);
   std::map<std::pair<std::string, double>,
-           std::map<std::string, std::vector<const Trial*>>, decltype(&bySweepValue)>
+           std::map<std::string, std::vector<const Judged*>>, decltype(&bySweepValue)>
       groups(&bySweepValue);
   for (const Trial& t : trials) {
     const auto key =
         by_set ? std::make_pair(t.set, 0.0) : std::make_pair(t.sweep, t.value);
     groups[key][t.method].push_back(&t);
   }
-  out << (by_set ? "| pair / scan " : "| condition ")
-      << "| method | trials | success | median RRE (deg) | median RTE (m) | median "
-         "time "
-         "(ms) | p90 time (ms) |\n|---|---|---|---|---|---|---|---|\n";
+  out << tableHeader({by_set ? "pair / scan" : "condition", "method", "trials",
+                      "success", "median RRE (deg)", "median RTE (m)",
+                      "median time (ms)", "p90 time (ms)"});
   for (const auto& [key, per_method] : groups) {
     std::string name = key.first;
     if (!by_set && key.first == "unrelated")
@@ -124,7 +182,7 @@ void writeSummary(std::ostream& out, const std::vector<Trial>& trials, bool by_s
 
 void writeNeesSummary(std::ostream& out, const std::vector<Trial>& trials)
 {
-  std::map<int, std::vector<const Trial*>> by_bandwidth;
+  std::map<int, std::vector<const Judged*>> by_bandwidth;
   for (const Trial& t : trials)
     by_bandwidth[t.bandwidth].push_back(&t);
   out << "| bandwidth | trials | converged | mean NEES (6 = consistent) | median NEES "
@@ -133,35 +191,14 @@ void writeNeesSummary(std::ostream& out, const std::vector<Trial>& trials)
          "(deg) | RMS RTE (m) | median sigma_rot (deg) | "
          "median sigma_trans (m) |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& [bandwidth, group] : by_bandwidth) {
-    int converged = 0, inside = 0;
-    double sum_nees = 0.0, sum_rre2 = 0.0, sum_rte2 = 0.0, sum_rot = 0.0,
-           sum_trans = 0.0;
-    std::vector<double> nees, sigma_rot, sigma_trans;
-    for (const Trial* t : group) {
-      if (!t->converged || t->nees < 0.0)
-        continue;
-      ++converged;
-      sum_nees += t->nees;
-      sum_rot += t->nees_rot;
-      sum_trans += t->nees_trans;
-      nees.push_back(t->nees);
-      inside += t->nees <= 12.5916; // chi-square, 6 dof, 95 %
-      sum_rre2 += t->rre_deg * t->rre_deg;
-      sum_rte2 += t->rte_m * t->rte_m;
-      sigma_rot.push_back(t->sigma_rot_deg);
-      sigma_trans.push_back(t->sigma_trans_m);
-    }
-    const double n = converged;
-    out << "| " << bandwidth << " | " << group.size() << " | " << converged << " | "
-        << formatValue("%.2f", sum_nees / n) << " | "
-        << formatValue("%.2f", median(nees)) << " | "
-        << formatValue("%.0f %%", 100.0 * inside / n) << " | "
-        << formatValue("%.2f", sum_rot / n) << " / "
-        << formatValue("%.2f", sum_trans / n) << " | "
-        << formatValue("%.3f", std::sqrt(sum_rre2 / n)) << " | "
-        << formatValue("%.3f", std::sqrt(sum_rte2 / n)) << " | "
-        << formatValue("%.3f", median(sigma_rot)) << " | "
-        << formatValue("%.3f", median(sigma_trans)) << " |\n";
+    const NeesSummary s = summarizeNees(group);
+    out << "| " << bandwidth << " | " << group.size() << " | " << s.n << " | "
+        << formatValue("%.2f", s.mean) << " | " << formatValue("%.2f", s.median)
+        << " | " << formatValue("%.0f %%", 100.0 * s.inside / s.n) << " | "
+        << formatValue("%.2f", s.mean_rot) << " / " << formatValue("%.2f", s.mean_trans)
+        << " | " << formatValue("%.3f", s.rms_rre) << " | "
+        << formatValue("%.3f", s.rms_rte) << " | " << formatValue("%.3f", s.sigma_rot)
+        << " | " << formatValue("%.3f", s.sigma_trans) << " |\n";
   }
 }
 
@@ -199,9 +236,8 @@ std::vector<std::string> writePlots(const std::string& dir,
   std::vector<std::string> pngs;
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  const bool have_gnuplot = std::system("command -v gnuplot > /dev/null 2>&1") == 0;
   for (const std::string sweep : {"noise", "sparsity", "overlap"}) {
-    std::map<std::string, std::map<double, std::vector<const Trial*>>> series;
+    std::map<std::string, std::map<double, std::vector<const Judged*>>> series;
     bool any = false;
     for (const Trial& t : trials)
       if (t.sweep == sweep) {
@@ -229,13 +265,11 @@ std::vector<std::string> writePlots(const std::string& dir,
       }
       dat << "\n\n";
     }
-    std::ofstream gp(base + ".gp");
+    std::ostringstream gp;
     const char* xlabel = sweep == "noise"      ? "PSNR (dB)"
                          : sweep == "sparsity" ? "points kept (%)"
                                                : "overlap (% of the azimuth circle)";
-    gp << "set terminal pngcairo size 1000,420 font ',11' noenhanced\nset output '"
-       << base
-       << ".png'\nset multiplot layout 1,2 title 'pcl_phaser_bench compare: " << sweep
+    gp << "set multiplot layout 1,2 title 'pcl_phaser_bench compare: " << sweep
        << " sweep'\nset key bottom left\nset grid\nset xlabel '" << xlabel
        << "'\nset xrange [*:*] reverse\n"
        << "set ylabel 'success (%)'\nset yrange [0:105]\n"
@@ -245,11 +279,48 @@ std::vector<std::string> writePlots(const std::string& dir,
        << "plot for [i=0:" << series.size() - 1 << "] '" << base
        << ".dat' index i using 1:3 with linespoints title columnheader(1)\n"
        << "unset multiplot\n";
-    gp.close();
-    if (have_gnuplot && std::system(("gnuplot '" + base + ".gp'").c_str()) == 0)
-      pngs.push_back(base + ".png");
+    if (const std::string png = plotPng(base, "1000,420", gp.str()); !png.empty())
+      pngs.push_back(png);
   }
   return pngs;
+}
+
+std::string plotPng(const std::string& base, const char* size,
+                    const std::string& script)
+{
+  std::ofstream(base + ".gp") << "set terminal pngcairo size " << size
+                              << " font ',11' noenhanced\nset output '" << base
+                              << ".png'\n"
+                              << script;
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0)
+    return "";
+  return std::system(("gnuplot '" + base + ".gp'").c_str()) == 0 ? base + ".png" : "";
+}
+
+std::ostream& openMarkdown(const std::string& path, std::ofstream& file,
+                           const std::string& command)
+{
+  if (!path.empty())
+    file.open(path);
+  std::ostream& md = path.empty() ? std::cout : file;
+  md << "Command: `" << command << "`\n\n";
+  return md;
+}
+
+std::string yardstickLine(double fft_ms)
+{
+  return "Yardstick: one 128^3 real-to-complex FFT (FFTW_MEASURE, 1 thread) = " +
+         formatValue("%.2f", fft_ms) + " ms (FFT128).\n\n";
+}
+
+std::string tableHeader(const std::vector<std::string>& columns)
+{
+  std::string names = "|", rule = "|";
+  for (const std::string& column : columns) {
+    names += " " + column + " |";
+    rule += "---|";
+  }
+  return names + "\n" + rule + "\n";
 }
 
 std::string formatValue(const char* fmt, double value)

@@ -2,13 +2,18 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * Copyright (c) 2026, the pcl_phaser developers.
  *
- * What pcl_phaser_bench compare, nees and detection record per registration, and its
- * summaries: the markdown tables, the CSV, and gnuplot plots of the sweeps.
+ * The one trial-and-report path of pcl_phaser_bench compare, nees, detection, revisits
+ * and objects: the options they share, what they record per registration (Judged,
+ * methods.h), the summaries of groups of trials, the markdown tables, the CSV and the
+ * gnuplot plots.
  */
 #pragma once
 
+#include "bench_command_line.h"
 #include "methods.h"
 
+#include <cmath>
+#include <fstream>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -16,25 +21,73 @@
 namespace pcl::phaser {
 namespace bench {
 
-/** \brief One registration of one method on one pair. */
-struct Trial {
+/** \brief One registration of one method on one pair of compare, nees or detection. */
+struct Trial : Judged {
   std::string set;    ///< what was registered: a scan name, a pair, "unrelated", ...
   std::string sweep;  ///< clean, noise, sparsity, overlap
   double value = 0.0; ///< the sweep's parameter (PSNR dB or kept fraction)
   int pose = 0;       ///< index of the random pose (0 for real pairs)
-  std::string method; ///< e.g. "phaser", "sacia+icp"
   int bandwidth = 0;  ///< pcl_phaser's bandwidth (0 for other methods)
-  double rre_deg = 0.0, rte_m = 0.0, ms = 0.0;
-  bool converged = false;   ///< the method's own verdict
-  bool success = false;     ///< RRE and RTE under the thresholds
-  double score = 0.0;       ///< the method's quality figure (see MethodResult)
-  double nees = -1.0;       ///< 6-D NEES under the method's covariance, -1 without one
-  double nees_rot = -1.0;   ///< 3-D NEES of the rotation error under its own block
-  double nees_trans = -1.0; ///< 3-D NEES of the translation error under its own block
-  double sigma_rot_deg = 0.0; ///< sqrt(trace) of the covariance's rotation block
-  double sigma_trans_m = 0.0; ///< sqrt(trace) of its translation block
-  std::optional<PhaserResult> phaser; ///< pcl_phaser's result (MethodResult)
 };
+
+/** \brief The options the studies share (--data, --methods, --seed, --fpcs-time,
+ *  --voxel, --csv, --md, --plots and the engine's); a study without one keeps its
+ *  default. */
+struct StudyOptions {
+  std::string data;
+  std::vector<std::string> methods;
+  int fpcs_seconds = 10;
+  unsigned seed = 1;
+  double voxel = 0.0;      ///< leaf of PCL's methods
+  PhaserParameters engine; ///< pcl_phaser's settings; its threads every method's
+  std::string csv, markdown, plots;
+};
+
+/** \brief Reads the shared options of \a args into \a o, --methods defaulting to
+ *  \a methods and --voxel to \a voxel (the engine with 2 threads); malformed values are
+ *  recorded in \a args. */
+void readStudyOptions(BenchArguments& args, StudyOptions& o,
+                      std::vector<std::string> methods, double voxel);
+
+/** \brief Records in \a args the first problem of \a o's shared options: a method
+ *  unknown (or, when \a require_methods, none given), --threads or --fpcs-time < 1. */
+void checkStudyOptions(BenchArguments& args, const StudyOptions& o,
+                       bool require_methods);
+
+/** \brief Counts and medians of a group of trials. */
+struct Summary {
+  int n = 0, ok = 0;                          ///< trials, successes
+  int converged_ok = 0, converged_failed = 0; ///< converged successes, failures
+  double median_rre = NAN, median_rte = NAN;  ///< over the successes
+  double median_ms = NAN, p90_ms = NAN;       ///< over all the trials
+};
+
+/** \brief The Summary of \a group. */
+Summary summarize(const std::vector<const Judged*>& group);
+
+/** \brief The trials of \a trials that \a take, as pointers (for summarize()). */
+template <class T, class Take>
+std::vector<const Judged*> select(const std::vector<T>& trials, Take take)
+{
+  std::vector<const Judged*> out;
+  for (const T& t : trials)
+    if (take(t))
+      out.push_back(&t);
+  return out;
+}
+
+/** \brief How the covariance of a group's converged trials with one (NEES >= 0) covers
+ *  their errors: how many, mean and median 6-D NEES, inside the 95 % ellipsoids (6-D,
+ *  and each block in 3-D), mean NEES per block, RMS errors, median sigmas (NaN for
+ *  none). */
+struct NeesSummary {
+  int n = 0, inside = 0, inside_rot = 0, inside_trans = 0;
+  double mean = NAN, median = NAN, mean_rot = NAN, mean_trans = NAN;
+  double rms_rre = NAN, rms_rte = NAN, sigma_rot = NAN, sigma_trans = NAN;
+};
+
+/** \brief The NeesSummary of \a group. */
+NeesSummary summarizeNees(const std::vector<const Judged*>& group);
 
 /** \brief Writes every trial as a CSV row (with a header): the trial, `fitness_score`
  *  (PCL's getFitnessScore; empty for pcl_phaser), the NEES, then pcl_phaser's result
@@ -60,6 +113,23 @@ void writeDetectionSummary(std::ostream& out, const std::vector<Trial>& trials,
  * sweep's parameter, one line per method. Returns the PNGs written. */
 std::vector<std::string> writePlots(const std::string& dir,
                                     const std::vector<Trial>& trials);
+
+/** \brief Writes \a base.gp: a pngcairo terminal of \a size ("W,H") writing base.png,
+ *  then \a script; runs it when gnuplot is installed. \return base.png, or "" when
+ *  gnuplot is missing or failed */
+std::string plotPng(const std::string& base, const char* size,
+                    const std::string& script);
+
+/** \brief The markdown stream of a study: \a file opened on \a path, or stdout when
+ *  \a path is empty; "Command: `command`" and a blank line written to it. */
+std::ostream& openMarkdown(const std::string& path, std::ofstream& file,
+                           const std::string& command);
+
+/** \brief The paragraph of the yardstick: one 128^3 FFT took \a fft_ms ms (FFT128). */
+std::string yardstickLine(double fft_ms);
+
+/** \brief A markdown table's header: "| A | B |" and "|---|---|", lines ended. */
+std::string tableHeader(const std::vector<std::string>& columns);
 
 /** \brief \a value printed with the printf format \a fmt, or "-" when not finite. */
 std::string formatValue(const char* fmt, double value);

@@ -7,7 +7,9 @@
  * as the compare study runs them; success at 2 m and at 0.6 m (RRE < 5 deg both), by
  * bins of the distance between the scans, with the converged flag's false accepts and
  * the times in units of one 128^3 FFT. With --derived-pairs the pairs are derived from
- * poses_T_world_lidar.txt instead (derivePairs() in revisits.h).
+ * poses_T_world_lidar.txt instead (derivePairs() in revisits.h). How the covariance of
+ * the converged trials covers their errors (the NEES table), against references
+ * corrected for the odometry's drift or not.
  */
 #include "cloud_reading.h"
 #include "fft_yardstick.h"
@@ -16,7 +18,6 @@
 #include "report.h"
 #include "result_csv.h"
 #include "revisits.h"
-#include "revisits_calibration.h"
 #include "subcommands.h"
 
 #include <pcl/console/print.h>
@@ -44,20 +45,138 @@ namespace console = pcl::console;
 
 const char* const kFolder = "lidar/balm_handheld";
 
-struct RevisitOptions {
-  std::string data,
-      pairs_file; ///< pairs_file empty: <data>/lidar/balm_handheld/pairs.txt
-  std::vector<std::string> methods;
-  int max_pairs = 0, fpcs_seconds = 10;
+constexpr double kRreThreshold = 5.0;  ///< deg, both success levels
+constexpr double kRteThresholdA = 2.0; ///< m, loop-closure level
+constexpr double kRteThresholdB = 0.6; ///< m, the benchmark's usual level
+
+/** A range of the distance between the scans, [lo, hi). */
+struct Bin {
+  std::string label;
+  double lo, hi;
+};
+
+/** One method on one pair; success: @2 m (RRE < kRreThreshold, RTE < kRteThresholdA).
+ */
+struct RevisitTrial : Judged {
+  RevisitPair pair;
+
+  /** \brief Success @0.6 m: RTE < kRteThresholdB. */
+  bool successB() const { return rre < kRreThreshold && rte < kRteThresholdB; }
+  /** \brief Whether this is a trial of \a name on a pair whose distance is in \a bin.
+   */
+  bool in(const std::string& name, const Bin& bin) const
+  {
+    return method == name && pair.dist >= bin.lo && pair.dist < bin.hi;
+  }
+};
+
+/** The distance bins of the tables: four disjoint ones, then <10 m, >=10 m, all. */
+const std::vector<Bin>& bins()
+{
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  static const std::vector<Bin> all = {
+      {"[0, 5) m", 0.0, 5.0},     {"[5, 10) m", 5.0, 10.0}, {"[10, 15) m", 10.0, 15.0},
+      {"[15, inf) m", 15.0, inf}, {"<10 m", 0.0, 10.0},     {">=10 m", 10.0, inf},
+      {"all", 0.0, inf}};
+  return all;
+}
+
+/** \brief Writes a Markdown table: the header "| method | distance | " and \a columns,
+ *  then \a row(method, bin) for every method and distance bin, in that order. */
+template <typename Row>
+void writeRows(std::ostream& out, std::vector<std::string> columns,
+               const std::vector<std::string>& methods, const Row& row)
+{
+  columns.insert(columns.begin(), {"method", "distance"});
+  out << tableHeader(columns);
+  for (const std::string& method : methods)
+    for (const Bin& bin : bins())
+      row(method, bin);
+}
+
+/** The covariance's calibration per method (those with one) and distance bin:
+ *  converged trials, mean and median 6-D NEES, the shares inside the 95 % ellipsoids
+ *  (6-D, and each block in 3-D), mean NEES per block, RMS errors, median sigmas. */
+void writeNeesTable(std::ostream& out, const std::vector<RevisitTrial>& trials,
+                    const std::vector<std::string>& methods)
+{
+  out << '\n';
+  writeRows(out,
+            {"converged with covariance", "mean NEES (6)", "median NEES",
+             "inside 95 % (6-D, 12.59)", "inside 95 % rot. / trans. (3-D, 7.81)",
+             "mean NEES rot. / trans. (3)", "RMS RRE (deg)", "RMS RTE (m)",
+             "median sigma_rot (deg)", "median sigma_trans (m)"},
+            methods, [&](const std::string& method, const Bin& bin) {
+              const NeesSummary s = summarizeNees(select(
+                  trials, [&](const RevisitTrial& t) { return t.in(method, bin); }));
+              if (s.n == 0)
+                return;
+              const auto share = [&](int k) {
+                return formatValue("%.1f %%", 100.0 * k / s.n);
+              };
+              out << "| " << method << " | " << bin.label << " | " << s.n << " | "
+                  << formatValue("%.2f", s.mean) << " | "
+                  << formatValue("%.2f", s.median) << " | " << share(s.inside) << " | "
+                  << share(s.inside_rot) << " / " << share(s.inside_trans) << " | "
+                  << formatValue("%.2f", s.mean_rot) << " / "
+                  << formatValue("%.2f", s.mean_trans) << " | "
+                  << formatValue("%.3f", s.rms_rre) << " | "
+                  << formatValue("%.3f", s.rms_rte) << " | "
+                  << formatValue("%.3f", s.sigma_rot) << " | "
+                  << formatValue("%.3f", s.sigma_trans) << " |\n";
+            });
+}
+
+/** The reference poses of \a pairs corrected for the drift of -reference-drift; false
+ *  (with a message) when a pair's scans have no pose. */
+bool correctReferences(const Eigen::Vector3d& drift, const std::vector<ScanPose>& poses,
+                       std::vector<RevisitPair>& pairs, std::string& origin)
+{
+  for (RevisitPair& pair : pairs)
+    if (!correctDrift(pair, poses, drift)) {
+      pcl::console::print_error("revisits: no odometry pose for %s -> %s\n",
+                                pair.source.c_str(), pair.target.c_str());
+      return false;
+    }
+  origin += "; reference poses corrected for a linear odometry drift of (" +
+            formatValue("%.4g", drift.x()) + ", " + formatValue("%.4g", drift.y()) +
+            ", " + formatValue("%.4g", drift.z()) + ") m per scan index";
+  return true;
+}
+
+/** "Odometry drift fitted ..." for the converged trials of \a method (fitDrift()). */
+std::string driftLine(const std::vector<RevisitTrial>& trials,
+                      const std::string& method, const std::vector<ScanPose>& poses)
+{
+  std::vector<RevisitPair> pairs;
+  std::vector<Eigen::Matrix4d> estimates;
+  for (const RevisitTrial& t : trials)
+    if (t.method == method && t.converged) {
+      pairs.push_back(t.pair);
+      estimates.push_back(t.estimate);
+    }
+  if (pairs.empty() || poses.empty())
+    return "";
+  const Eigen::Vector3d d = fitDrift(pairs, estimates, poses);
+  return "Linear odometry drift of the reference poses that best explains the "
+         "translation errors of the " +
+         std::to_string(pairs.size()) + " converged " + method +
+         " trials (fitDrift(), world frame): (" + formatValue("%.4g", d.x()) + ", " +
+         formatValue("%.4g", d.y()) + ", " + formatValue("%.4g", d.z()) +
+         ") m per scan index, " + formatValue("%.3f", 174.0 * d.norm()) +
+         " m over scans 0-174 (pass it as --reference-drift DX,DY,DZ to judge against "
+         "corrected references).\n";
+}
+
+/** The study's options; voxel: 1 m by default, as for the compare study's LiDAR. */
+struct RevisitOptions : StudyOptions {
+  std::string pairs_file; ///< empty: <data>/lidar/balm_handheld/pairs.txt
+  int max_pairs = 0;
   int derived_pairs = 0; ///< per bin from the poses instead of the pairs file; 0: off
-  unsigned seed = 1;
-  double voxel = 1.0; ///< leaf of PCL's methods, as for the compare study's LiDAR
   double source_wedge = 1.0; ///< azimuth share of each source kept (--source-wedge)
-  PhaserParameters engine;   ///< pcl_phaser's settings; its threads every method's
   /** --reference-drift: linear odometry drift (world, m per scan index) removed from
    *  the reference poses (correctDrift()); empty: none */
   std::vector<double> drift;
-  std::string csv, markdown, plots;
 };
 
 constexpr std::size_t kDisjointBins = 4; ///< the first bins() partition the distances
@@ -65,47 +184,36 @@ constexpr std::size_t kDisjointBins = 4; ///< the first bins() partition the dis
 /** Reads and checks the options; false when one is invalid (recorded in \a args). */
 bool parseRevisitOptions(BenchArguments& args, RevisitOptions& o)
 {
-  o.data = args.data();
+  readStudyOptions(args, o, {"phaser", "phaser_xyz", "sacia", "prerejective"}, 1.0);
   o.pairs_file = args.text("--pairs-file");
-  o.methods = args.list("--methods", {"phaser", "phaser_xyz", "sacia", "prerejective"});
   o.max_pairs = static_cast<int>(args.integer("--max-pairs", 0));
   o.source_wedge = args.number("--source-wedge", 1.0);
   o.derived_pairs = static_cast<int>(args.integer("--derived-pairs", 0));
-  o.seed = static_cast<unsigned>(args.integer("--seed", 1));
-  o.voxel = args.number("--voxel", 1.0);
-  o.fpcs_seconds = static_cast<int>(args.integer("--fpcs-time", 10));
-  o.csv = args.text("--csv");
-  o.markdown = args.text("--md");
-  o.plots = args.text("--plots");
   o.drift = args.numbers("--reference-drift", {});
-  o.engine = args.engine(2);
-  args.check(!o.methods.empty(), "--methods: none given");
-  for (const std::string& m : o.methods)
-    args.check(findMethod(m) != nullptr, "--methods: unknown method " + m);
+  checkStudyOptions(args, o, true);
   args.check(o.max_pairs >= 0, "--max-pairs: >= 0");
   args.check(o.derived_pairs >= 0, "--derived-pairs: >= 0");
   args.check(o.source_wedge > 0.0 && o.source_wedge <= 1.0,
              "--source-wedge: in (0, 1]");
-  args.check(o.engine.num_threads >= 1, "--threads: every method's, >= 1");
   args.check(o.voxel > 0.0, "--voxel: > 0");
-  args.check(o.fpcs_seconds >= 1, "--fpcs-time: >= 1");
   args.check(o.drift.empty() || o.drift.size() == 3,
              "--reference-drift: three numbers DX,DY,DZ");
   return args.ok();
 }
 
 /** The pairs of the study: those of the pairs file or, with --derived-pairs, those
- * derivePairs() finds in the poses; \a origin says which, for the report. False (with
- * a message) on an unreadable or malformed file. */
+ * derivePairs() finds in the poses; \a origin says which, for the report. The poses
+ * file, when present, into \a poses (the drift correction and fit use them too). False
+ * (with a message) on an unreadable or malformed file. */
 bool loadPairs(const RevisitOptions& o, const std::string& pairs_file,
-               const std::string& poses_file, std::vector<RevisitPair>& pairs,
-               std::string& origin)
+               const std::string& poses_file, std::vector<ScanPose>& poses,
+               std::vector<RevisitPair>& pairs, std::string& origin)
 {
   std::string error;
   std::vector<RevisitPair> listed;
-  std::vector<ScanPose> poses;
   if (!readPairs(pairs_file, listed, error) ||
-      (o.derived_pairs > 0 && !readScanPoses(poses_file, poses, error))) {
+      (std::filesystem::exists(poses_file) &&
+       !readScanPoses(poses_file, poses, error))) {
     console::print_error("revisits: %s\n", error.c_str());
     return false;
   }
@@ -163,12 +271,9 @@ std::vector<RevisitTrial> runTrials(const RevisitOptions& o, const std::string& 
                                     const std::vector<RevisitPair>& pairs,
                                     std::ostream* csv)
 {
-  MethodSettings settings;
-  settings.threads = o.engine.num_threads;
-  settings.voxel = o.voxel;
-  settings.seed = o.seed; // + pose, which is 0 for real pairs
-  settings.fpcs_seconds = o.fpcs_seconds;
-  settings.engine = o.engine;
+  // seed: + pose, which is 0 for real pairs
+  const MethodSettings settings =
+      studySettings(o.engine, o.voxel, o.seed, o.fpcs_seconds);
   std::map<std::string, Cloud::ConstPtr> scans; // each read once
   auto scan = [&](const std::string& name) {
     if (!scans.count(name))
@@ -186,18 +291,11 @@ std::vector<RevisitTrial> runTrials(const RevisitOptions& o, const std::string& 
     if (o.source_wedge < 1.0)
       source = wedgeOf(*source, o.source_wedge, o.seed, i);
     for (const std::string& name : o.methods) {
-      const MethodResult r = findMethod(name)->run(source, target, settings);
       RevisitTrial t;
-      t.method = name;
+      static_cast<Judged&>(t) =
+          judge(name, findMethod(name)->run(source, target, settings), pair.truth);
       t.pair = pair;
-      t.rre = rreDeg(r.transformation, pair.truth);
-      t.rte = rteM(r.transformation, pair.truth);
-      t.ms = r.ms;
-      t.score = r.score;
-      t.phaser = r.phaser;
-      t.converged = r.converged;
-      t.estimate = r.transformation;
-      t.nees = neesOf(r, pair.truth);
+      t.success = t.rre < kRreThreshold && t.rte < kRteThresholdA;
       std::fprintf(stderr,
                    "[%zu/%zu] %s -> %s (%.2f m) %-12s RRE %7.2f deg  RTE %7.3f m  "
                    "converged %d  %8.0f ms  NEES %.2f (rot. %.2f, trans. %.2f)\n",
@@ -221,35 +319,19 @@ std::string countOf(int k, int n)
          formatValue("%.0f %%", 100.0 * k / n) + ")";
 }
 
-struct BinSummary {
-  int n = 0, ok_a = 0, ok_b = 0;
-  int converged_failures = 0, converged_successes = 0;
-  double median_rre = NAN, median_rte = NAN, median_ms = NAN;
+/** The Summary of \a method's trials in \a bin (success @2 m), and ok_b: @0.6 m. */
+struct BinSummary : Summary {
+  int ok_b = 0;
 };
 
-BinSummary summarize(const std::vector<RevisitTrial>& trials, const std::string& method,
-                     const Bin& bin)
+BinSummary summarizeBin(const std::vector<RevisitTrial>& trials,
+                        const std::string& method, const Bin& bin)
 {
   BinSummary s;
-  std::vector<double> rre, rte, ms;
-  for (const RevisitTrial& t : trials) {
-    if (t.method != method || t.pair.dist < bin.lo || t.pair.dist >= bin.hi)
-      continue;
-    ++s.n;
-    ms.push_back(t.ms);
-    s.ok_b += t.successB();
-    if (t.successA()) {
-      ++s.ok_a;
-      s.converged_successes += t.converged;
-      rre.push_back(t.rre);
-      rte.push_back(t.rte);
-    } else {
-      s.converged_failures += t.converged;
-    }
-  }
-  s.median_rre = median(rre);
-  s.median_rte = median(rte);
-  s.median_ms = median(ms);
+  static_cast<Summary&>(s) = summarize(
+      select(trials, [&](const RevisitTrial& t) { return t.in(method, bin); }));
+  for (const RevisitTrial& t : trials)
+    s.ok_b += t.in(method, bin) && t.successB();
   return s;
 }
 
@@ -261,16 +343,16 @@ void writeTable(std::ostream& out, const std::vector<RevisitTrial>& trials,
              "median RTE (m)", "median time (ms)", "median time (FFT128)",
              "false accepts (converged failures)", "converged successes"},
             methods, [&](const std::string& method, const Bin& bin) {
-              const BinSummary s = summarize(trials, method, bin);
+              const BinSummary s = summarizeBin(trials, method, bin);
               out << "| " << method << " | " << bin.label << " | " << s.n << " | "
-                  << formatValue("%.0f %%", s.n ? 100.0 * s.ok_a / s.n : NAN) << " | "
+                  << formatValue("%.0f %%", s.n ? 100.0 * s.ok / s.n : NAN) << " | "
                   << formatValue("%.0f %%", s.n ? 100.0 * s.ok_b / s.n : NAN) << " | "
                   << formatValue("%.2f", s.median_rre) << " | "
                   << formatValue("%.3f", s.median_rte) << " | "
                   << formatValue("%.0f", s.median_ms) << " | "
                   << formatValue("%.1f", s.median_ms / fft_ms) << " | "
-                  << countOf(s.converged_failures, s.n - s.ok_a) << " | "
-                  << countOf(s.converged_successes, s.ok_a) << " |\n";
+                  << countOf(s.converged_failed, s.n - s.ok) << " | "
+                  << countOf(s.converged_ok, s.ok) << " |\n";
             });
 }
 
@@ -285,21 +367,18 @@ std::string writePlot(const std::string& dir, const std::vector<RevisitTrial>& t
   for (const std::string& method : methods) {
     dat << "# " << method << ": bin, label, success @2 m (%), success @0.6 m (%), n\n";
     for (std::size_t b = 0; b < kDisjointBins; ++b) {
-      const BinSummary s = summarize(trials, method, bins()[b]);
+      const BinSummary s = summarizeBin(trials, method, bins()[b]);
       // gnuplot skips NaN (empty bins)
       dat << b << " \"" << bins()[b].label << "\" "
-          << (s.n ? formatValue("%g", 100.0 * s.ok_a / s.n) : "NaN") << " "
+          << (s.n ? formatValue("%g", 100.0 * s.ok / s.n) : "NaN") << " "
           << (s.n ? formatValue("%g", 100.0 * s.ok_b / s.n) : "NaN") << " " << s.n
           << "\n";
     }
     dat << "\n\n";
   }
   dat.close();
-  std::ofstream gp(base + ".gp");
-  gp << "set terminal pngcairo size 900,500 font ',11' noenhanced\nset output '" << base
-     << ".png'\nset title 'pcl_phaser_bench revisits: revisit pairs (RRE < 5 deg; "
-        "solid: "
-        "RTE "
+  std::ostringstream gp;
+  gp << "set title 'pcl_phaser_bench revisits: revisit pairs (RRE < 5 deg; solid: RTE "
         "< 2 m, dashed: RTE < 0.6 m)'\nset key outside right\nset grid\n"
      << "set xlabel 'distance between the scans'\nset xrange [-0.3:"
      << kDisjointBins - 0.7 << "]\nset ylabel 'success (%)'\nset yrange [0:105]\nplot ";
@@ -310,25 +389,19 @@ std::string writePlot(const std::string& dir, const std::vector<RevisitTrial>& t
        << " using 1:4 with linespoints lc " << i + 1 << " dt 2 pt 6 title '"
        << methods[i] << " @0.6 m'";
   gp << "\n";
-  gp.close();
-  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0)
-    return "";
-  return std::system(("gnuplot '" + base + ".gp'").c_str()) == 0 ? base + ".png" : "";
+  return plotPng(base, "900,500", gp.str());
 }
 
-void writeReport(std::ostream& md, const std::string& command,
-                 const std::vector<RevisitTrial>& trials, const RevisitOptions& o,
-                 const std::string& origin, double fft_ms,
+void writeReport(std::ostream& md, const std::vector<RevisitTrial>& trials,
+                 const RevisitOptions& o, const std::string& origin, double fft_ms,
                  const std::vector<ScanPose>& poses)
 {
-  md << "Command: `" << command << "`\n\n"
-     << "Revisit pairs: " << origin << " (voxel of PCL's methods " << o.voxel << " m, "
+  md << "Revisit pairs: " << origin << " (voxel of PCL's methods " << o.voxel << " m, "
      << o.engine.num_threads << " threads). Success @2 m: RRE < " << kRreThreshold
      << " deg and RTE < " << kRteThresholdA << " m; @0.6 m: RTE < " << kRteThresholdB
      << " m. Median RRE / RTE over the successes @2 m; time over all trials. False "
         "accepts: failures @2 m that the method reported as converged.\n\n"
-     << "Yardstick: one 128^3 real-to-complex FFT (FFTW_MEASURE, 1 thread) = "
-     << formatValue("%.2f", fft_ms) << " ms (FFT128).\n\n";
+     << yardstickLine(fft_ms);
   writeTable(md, trials, o.methods, fft_ms);
   md << "\nCovariance (getCovariance()) of the converged trials: NEES of the 6-D error "
         "(omega = Log(R_true R_est^T), nu = t_true - t_est) and of each block against "
@@ -372,15 +445,10 @@ int runRevisitsStudy(BenchArguments& args)
       return 0;
     }
   std::vector<RevisitPair> pairs;
+  std::vector<ScanPose> poses;
   std::string origin;
-  if (!loadPairs(o, pairs_file, poses_file, pairs, origin))
+  if (!loadPairs(o, pairs_file, poses_file, poses, pairs, origin))
     return 1;
-  std::vector<ScanPose> poses; // for the drift correction and fit, if present
-  std::string error;
-  if (std::filesystem::exists(poses_file) && !readScanPoses(poses_file, poses, error)) {
-    console::print_error("revisits: %s\n", error.c_str());
-    return 1;
-  }
   if (!o.drift.empty() &&
       !correctReferences(Eigen::Vector3d(o.drift[0], o.drift[1], o.drift[2]), poses,
                          pairs, origin))
@@ -393,10 +461,8 @@ int runRevisitsStudy(BenchArguments& args)
   const std::unique_ptr<std::ofstream> csv = openCsv(o.csv);
   const std::vector<RevisitTrial> trials = runTrials(o, folder, pairs, csv.get());
   std::ofstream md_file;
-  if (!o.markdown.empty())
-    md_file.open(o.markdown);
-  writeReport(o.markdown.empty() ? std::cout : md_file, args.command(), trials, o,
-              origin, fft_ms, poses);
+  writeReport(openMarkdown(o.markdown, md_file, args.command()), trials, o, origin,
+              fft_ms, poses);
   if (!o.plots.empty()) {
     const std::string png = writePlot(o.plots, trials, o.methods);
     if (!png.empty())

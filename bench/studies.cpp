@@ -90,19 +90,15 @@ const std::vector<Pair> kPairs = {
      0.01},
 };
 
-struct Options {
-  std::string study, data;
-  std::vector<std::string> scans, methods, conditions;
+/** The study's options; voxel > 0 overrides the per-scan leaf of PCL's methods. */
+struct Options : StudyOptions {
+  std::string study;
+  std::vector<std::string> scans, conditions;
   std::vector<int> bandwidths;
-  int poses = 10, fpcs_seconds = 10;
-  unsigned seed = 1;
+  int poses = 10;
   bool icp = false, pairs = false;
   double rre_threshold = 5.0, rte_threshold = 0.6, t_max = 2.0;
   double max_tilt_pose = 180.0; ///< degrees: random poses tilted less than this
-  double voxel = 0.0;           ///< > 0: overrides the per-scan leaf of PCL's methods
-  pcl::phaser::PhaserParameters
-      engine; ///< pcl_phaser's settings; its threads every method's
-  std::string csv, markdown, plots;
 };
 
 /** The options of the compare, nees and detection studies. */
@@ -151,22 +147,14 @@ std::vector<std::string> allMethodNames()
 /** The options of \a args into \a o, "all" methods and "sweeps" conditions expanded. */
 void readOptions(BenchArguments& args, Options& o)
 {
-  o.data = args.data();
+  readStudyOptions(args, o, {"phaser", "sacia"}, 0.0);
   o.scans = args.list("--scans", {"hdl32", "kitti", "kitti_synthetic"});
-  o.methods = args.list("--methods", {"phaser", "sacia"});
   o.conditions = args.list("--conditions", {"clean"});
   o.poses = static_cast<int>(args.integer("--poses", 10));
-  o.seed = static_cast<unsigned>(args.integer("--seed", 1));
-  o.fpcs_seconds = static_cast<int>(args.integer("--fpcs-time", 10));
   o.t_max = args.number("--t-max", 2.0);
   o.max_tilt_pose = args.number("--max-tilt-pose", 180.0);
-  o.voxel = args.number("--voxel", 0.0);
-  o.csv = args.text("--csv");
-  o.markdown = args.text("--md");
-  o.plots = args.text("--plots");
   o.icp = args.has("--icp");
   o.pairs = args.has("--pairs");
-  o.engine = args.engine(2);
   for (double b : args.numbers("--bandwidths", {double(o.engine.bandwidth)}))
     if (args.check(b == std::floor(b), "--bandwidths: integers"))
       o.bandwidths.push_back(static_cast<int>(b));
@@ -182,8 +170,7 @@ void readOptions(BenchArguments& args, Options& o)
 bool parseOptions(BenchArguments& args, Options& o)
 {
   readOptions(args, o);
-  for (const std::string& m : o.methods)
-    args.check(findMethod(m) != nullptr, "--methods: unknown method " + m);
+  checkStudyOptions(args, o, false);
   for (const std::string& s : o.scans)
     args.check(std::any_of(kScans.begin(), kScans.end(),
                            [&](const Scan& x) { return x.name == s; }),
@@ -198,15 +185,15 @@ bool parseOptions(BenchArguments& args, Options& o)
                  !(args.has("--bandwidths") && args.has("-b")),
              "--bandwidths and --bandwidth: give one");
   args.check(o.poses >= 1 && o.poses <= 100000, "--poses: 1..100000");
-  args.check(o.engine.num_threads >= 1, "--threads: every method's, >= 1");
-  args.check(o.fpcs_seconds >= 1, "--fpcs-time: >= 1");
   args.check(o.t_max >= 0.0, "--t-max: >= 0");
   args.check(o.max_tilt_pose > 0.0 && o.max_tilt_pose <= 180.0,
              "--max-tilt-pose: in (0, 180]");
   return args.ok();
 }
 
-/** Runs the requested methods on one (source, target, truth) and records the trials. */
+/** Runs the requested methods on one (source, target, truth) and records the trials;
+ *  PCL's methods at the leaf \a voxel unless --voxel overrides it, pcl_phaser about
+ *  the centroids when \a centroid. */
 class Runner {
 public:
   Runner(const Options& o, std::vector<Trial>& trials)
@@ -216,18 +203,15 @@ public:
   }
 
   void run(const Trial& base, const Cloud::Ptr& source, const Cloud::Ptr& target,
-           const Eigen::Matrix4d& truth, MethodSettings settings, double rte_threshold)
+           const Eigen::Matrix4d& truth, double voxel, bool centroid,
+           double rte_threshold)
   {
-    settings.threads = o_.engine.num_threads;
-    if (o_.voxel > 0.0)
-      settings.voxel = o_.voxel;
-    settings.seed = o_.seed + static_cast<unsigned>(base.pose);
-    settings.fpcs_seconds = o_.fpcs_seconds;
-    settings.engine = o_.engine;
+    MethodSettings settings =
+        studySettings(o_.engine, o_.voxel > 0.0 ? o_.voxel : voxel,
+                      o_.seed + static_cast<unsigned>(base.pose), o_.fpcs_seconds);
+    settings.centroid = centroid;
     for (const std::string& name : o_.methods) {
-      const Method& method =
-          *std::find_if(allMethods().begin(), allMethods().end(),
-                        [&](const Method& m) { return m.name == name; });
+      const Method& method = *findMethod(name);
       const bool is_phaser = name.rfind("phaser", 0) == 0;
       for (int bandwidth : is_phaser ? o_.bandwidths : std::vector<int>{0}) {
         settings.bandwidth = bandwidth ? bandwidth : 64;
@@ -254,21 +238,8 @@ private:
   void record(Trial trial, const MethodResult& r, const Eigen::Matrix4d& truth,
               double rte_threshold)
   {
-    trial.rre_deg = rreDeg(r.transformation, truth);
-    trial.rte_m = rteM(r.transformation, truth);
-    trial.ms = r.ms;
-    trial.converged = r.converged;
-    trial.success = trial.rre_deg < o_.rre_threshold && trial.rte_m < rte_threshold;
-    trial.score = r.score;
-    trial.phaser = r.phaser;
-    if (r.has_covariance) {
-      const NeesFigures f = neesOf(r, truth);
-      trial.nees = f.nees;
-      trial.nees_rot = f.nees_rot;
-      trial.nees_trans = f.nees_trans;
-      trial.sigma_rot_deg = f.sigma_rot_deg;
-      trial.sigma_trans_m = f.sigma_trans_m;
-    }
+    static_cast<Judged&>(trial) = judge(trial.method, r, truth);
+    trial.success = trial.rre < o_.rre_threshold && trial.rte < rte_threshold;
     trials_.push_back(trial);
   }
 
@@ -326,9 +297,7 @@ void randomPoses(const Options& o, const std::map<std::string, Cloud::Ptr>& scan
         base.sweep = condition.sweep();
         base.value = condition.value;
         base.pose = k;
-        MethodSettings settings;
-        settings.voxel = scanInfo(name).voxel;
-        runner.run(base, source, scan, T, settings, o.rte_threshold);
+        runner.run(base, source, scan, T, scanInfo(name).voxel, false, o.rte_threshold);
       }
     }
 }
@@ -354,10 +323,7 @@ void realPairs(const Options& o, Runner& runner)
     Trial base;
     base.set = p.name;
     base.sweep = "pair";
-    MethodSettings settings;
-    settings.voxel = p.voxel;
-    settings.centroid = p.centroid;
-    runner.run(base, source, target, truth, settings, p.rte_threshold);
+    runner.run(base, source, target, truth, p.voxel, p.centroid, p.rte_threshold);
   }
 }
 
@@ -381,9 +347,8 @@ void detection(const Options& o, const std::map<std::string, Cloud::Ptr>& scans,
         base.set = source_name + " vs " + target_name;
         base.sweep = "unrelated";
         base.pose = k;
-        MethodSettings settings;
-        settings.voxel = scanInfo(target_name).voxel;
-        runner.run(base, source, target_scan, T, settings, o.rte_threshold);
+        runner.run(base, source, target_scan, T, scanInfo(target_name).voxel, false,
+                   o.rte_threshold);
       }
     }
 }
@@ -393,10 +358,7 @@ void writeReports(const Options& o, const std::vector<Trial>& trials,
                   const std::string& command)
 {
   std::ofstream md_file;
-  if (!o.markdown.empty())
-    md_file.open(o.markdown);
-  std::ostream& md = o.markdown.empty() ? std::cout : md_file;
-  md << "Command: `" << command << "`\n\n";
+  std::ostream& md = openMarkdown(o.markdown, md_file, command);
   std::vector<Trial> random_trials, pair_trials;
   for (const Trial& t : trials)
     (t.sweep == "pair" ? pair_trials : random_trials).push_back(t);

@@ -2,6 +2,7 @@
 // Copyright (c) 2026, the pcl_phaser developers.
 //
 #include "batch_pairs.h"
+#include "engine_options.h"
 
 #include <Eigen/LU>
 
@@ -35,10 +36,9 @@ std::vector<std::string> tokens(const std::string& line)
 /** \brief A finite number, or nothing. */
 std::optional<double> number(const std::string& text)
 {
-  char* end = nullptr;
+  double v = 0.0;
   errno = 0;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
+  if (!parseNumber(text, v) || errno == ERANGE)
     return std::nullopt;
   return v;
 }

@@ -100,6 +100,24 @@ inline bool parseInteger(const std::string& text, long lo, long hi, long& v)
   return !text.empty() && *end == '\0' && errno == 0 && v >= lo && v <= hi;
 }
 
+/** \brief \a text as a finite number into \a v; false when it is not all one (empty,
+ *  trailing characters, infinite or NaN). Leaves errno as std::strtod set it. */
+inline bool parseNumber(const std::string& text, double& v)
+{
+  char* end = nullptr;
+  v = std::strtod(text.c_str(), &end);
+  return !text.empty() && *end == '\0' && std::isfinite(v);
+}
+
+/** \brief \a text as two numbers "A,B", each as parseNumber() takes it, into \a a
+ *  and \a b; false when it is not. */
+inline bool parseNumberPair(const std::string& text, double& a, double& b)
+{
+  const std::size_t comma = text.find(',');
+  return comma != std::string::npos && parseNumber(text.substr(0, comma), a) &&
+         parseNumber(text.substr(comma + 1), b);
+}
+
 /** \brief Sets row \a r of \a p from \a text given as \a flag; empty, or the message
  *  naming the option, what it takes and its meaning. */
 inline std::string setFromText(const ParameterRange& r, const std::string& flag,

@@ -162,10 +162,7 @@ inline int parseValueOptions(Options& opt)
 {
   std::string text;
   if (opt.line.value("--icp-dist", text)) {
-    char* end = nullptr;
-    opt.icp_distance = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || !(opt.icp_distance > 0.0) ||
-        !std::isfinite(opt.icp_distance))
+    if (!pcl::phaser::parseNumber(text, opt.icp_distance) || !(opt.icp_distance > 0.0))
       return (fail(opt.error, kUsage,
                    "Invalid --icp-dist '%s': expected a distance > 0 in meters.",
                    text.c_str()));

@@ -167,10 +167,9 @@ int candidates(const Given& given, batch::PairList& list)
   for (const char* name : {"--poses", "--radius", "--min-gap"})
     if (!given.count(name))
       return usage(std::string("--scans needs ") + name);
-  char* end = nullptr;
   const std::string& radius_text = given.at("--radius");
-  const double radius = std::strtod(radius_text.c_str(), &end);
-  if (radius_text.empty() || *end != '\0' || !(radius > 0.0) || !std::isfinite(radius))
+  double radius = 0.0;
+  if (!pcl::phaser::parseNumber(radius_text, radius) || !(radius > 0.0))
     return usage("Invalid --radius '" + radius_text + "': expected meters > 0");
   int gap = 1;
   if (const int rc = integer(given, "--min-gap", 1, 1000000, gap); rc != batch::kOk)
@@ -202,14 +201,9 @@ int odometrySettings(const Given& given, std::optional<batch::OdometrySigma>& od
   batch::OdometrySigma sigma;
   if (given.count("--odometry-sigma")) {
     const std::string& text = given.at("--odometry-sigma");
-    char* end = nullptr;
-    sigma.translation = std::strtod(text.c_str(), &end);
-    const bool comma = *end == ',';
-    sigma.rotation_deg = comma ? std::strtod(end + 1, &end) : 0.0;
     // 1e-6 m and deg at least: the information (1 / sigma^2) must stay finite.
-    if (!comma || *end != '\0' || !(sigma.translation >= 1e-6) ||
-        !(sigma.rotation_deg >= 1e-6) || !std::isfinite(sigma.translation) ||
-        !std::isfinite(sigma.rotation_deg))
+    if (!pcl::phaser::parseNumberPair(text, sigma.translation, sigma.rotation_deg) ||
+        !(sigma.translation >= 1e-6) || !(sigma.rotation_deg >= 1e-6))
       return usage("Invalid --odometry-sigma '" + text +
                    "': expected T_M,R_DEG, two finite numbers >= 1e-6");
   }

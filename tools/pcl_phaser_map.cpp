@@ -50,9 +50,7 @@ int main(int argc, char** argv)
   if (error.empty() && line.files.size() != 3)
     error = "expected SCANS, POSES and OUT.pcd";
   else if (error.empty() && line.value("--voxel", text)) {
-    char* end = nullptr;
-    voxel = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || !(voxel >= 0.0) || !std::isfinite(voxel))
+    if (!pcl::phaser::parseNumber(text, voxel) || !(voxel >= 0.0))
       error = "Invalid --voxel '" + text + "': expected meters >= 0";
   }
   if (!error.empty())

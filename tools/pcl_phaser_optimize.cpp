@@ -64,17 +64,9 @@ struct Options {
 /** --drift DEG,FRACTION: two finite numbers, FRACTION > -1. */
 bool parseDrift(const std::string& text, Options& o)
 {
-  const std::size_t comma = text.find(',');
-  if (comma == std::string::npos)
-    return false;
-  const std::string deg = text.substr(0, comma), fraction = text.substr(comma + 1);
-  char *end_deg = nullptr, *end_fraction = nullptr;
-  o.drift_deg = std::strtod(deg.c_str(), &end_deg);
-  o.drift_fraction = std::strtod(fraction.c_str(), &end_fraction);
   o.drift = true;
-  return !deg.empty() && !fraction.empty() && *end_deg == '\0' &&
-         *end_fraction == '\0' && std::isfinite(o.drift_deg) &&
-         std::isfinite(o.drift_fraction) && o.drift_fraction > -1.0;
+  return pcl::phaser::parseNumberPair(text, o.drift_deg, o.drift_fraction) &&
+         o.drift_fraction > -1.0;
 }
 
 /** \a argv into \a o; empty, or the problem. */
