@@ -44,4 +44,14 @@ SpatialSpectrum occupancySpectrum(const SpatialGrid& grid,
   return computeSpectrum(voxelize(grid, points, voxel), num_threads);
 }
 
+SpatialSpectrumF occupancySpectrumSingle(const SpatialGrid& grid,
+                                         const Eigen::Matrix3Xd& points,
+                                         int num_threads)
+{
+  SpatialVoxelParameters voxel;
+  voxel.saturation = kOccupancySaturation;
+  voxel.num_threads = num_threads;
+  return computeSpectrum(voxelizeSingle(grid, points, voxel), num_threads);
+}
+
 } // namespace pcl::phaser::detail

@@ -9,6 +9,7 @@
 #include "channels/cloud_signals.h"
 #include "pipeline/stage_settings.h"
 #include "spatial/spatial_correlation.h"
+#include "spatial/spatial_single.h"
 #include "sphere/spherical_harmonics.h"
 
 #include <pcl_phaser/core/result.h>
@@ -27,5 +28,9 @@ SphericalSpectrum sphericalSpectrum(const Eigen::Matrix3Xd& points,
 /** Binary occupancy spectrum of \a points on \a grid. */
 SpatialSpectrum occupancySpectrum(const SpatialGrid& grid,
                                   const Eigen::Matrix3Xd& points, int num_threads);
+/** occupancySpectrum in single precision (pass 1's correlations). */
+SpatialSpectrumF occupancySpectrumSingle(const SpatialGrid& grid,
+                                         const Eigen::Matrix3Xd& points,
+                                         int num_threads);
 
 } // namespace pcl::phaser::detail

@@ -118,6 +118,7 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
     } else if (part == 2) {
       model->coarse = occupancySpectrum(coarse, points, 1);
       model->coarse_energy = spectrumEnergy(model->coarse);
+      model->coarse_single = singlePrecision(model->coarse);
     } else if (part == 3 && settings.mode.viewpoints) {
       model->free_space = freeSpace(points, kFreeSpaceBandwidth,
                                     kFreeSpaceMargin * coarse.voxel_size, 1);

@@ -11,6 +11,7 @@
 #include "pipeline/stage_settings.h"
 #include "so3/so3_refinement.h"
 #include "spatial/spatial_correlation.h"
+#include "spatial/spatial_single.h"
 #include "sphere/spherical_harmonics.h"
 #include "verification/verification.h"
 
@@ -39,8 +40,9 @@ struct TargetModel {
   SphericalSpectrum spherical;
   SphericalSupport spherical_support; ///< for the normalized refinement
   double spherical_norm = 0.0;
-  SphericalSpectrum orientation; ///< surface-orientation histogram (may be empty)
-  SpatialSpectrum coarse, fine;  ///< occupancy: padded whole target; inner region
+  SphericalSpectrum orientation;  ///< surface-orientation histogram (may be empty)
+  SpatialSpectrum coarse, fine;   ///< occupancy: padded whole target; inner region
+  SpatialSpectrumF coarse_single; ///< coarse rounded to float: pass 1's correlations
   double coarse_energy = 0.0, fine_energy = 0.0; ///< spectrumEnergy of coarse and fine
   PointIndex index;                              ///< target points, for verifyPose
   PointIndex reach_index; ///< at kReachVoxels (sensor-centered only)

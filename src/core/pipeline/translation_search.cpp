@@ -45,6 +45,21 @@ double shiftBound(const SourceContext& source)
   return source.allowed.shiftBound(source.target.coarse.grid.voxel_size);
 }
 
+/** Pass 1's whitened correlation of the source turned by \a R with the coarse target,
+ *  in single precision (one thread), its shifts kept within the priors' bound. */
+SpatialVolumeF coarseCorrelation(const SourceContext& source, const Eigen::Matrix3d& R)
+{
+  const TargetModel& target = source.target;
+  SpatialVolumeF C = correlateSpectraWhitened(
+      target.coarse_single,
+      occupancySpectrumSingle(target.coarse.grid, R * source.coarse_points, 1),
+      source.settings.whitening, 1);
+  const double max_shift = shiftBound(source);
+  if (std::isfinite(max_shift))
+    keepShiftsWithin(C, Eigen::Vector3d::Zero(), max_shift);
+  return C;
+}
+
 /** runTasks of \a task(k, its times); the wall time into \a times in their proportions.
  */
 template <typename Task>
@@ -99,16 +114,17 @@ void translateHypotheses(const SourceContext& source,
                          std::size_t first)
 {
   const bool refined = source.canVerify();
-  runTimed(
-      source, hypotheses.size() - first, times, [&](std::size_t k, StageTimes& task) {
-        Hypothesis& h = hypotheses[first + k];
-        const SpatialCorrelationResult shift = correlateTranslation(
-            source.target.coarse, h.rotation * source.coarse_points,
-            source.settings.whitening, 1, task, nullptr, nullptr, shiftBound(source));
-        h.overlap = shift.peak_value;
-        const Pose pose = verifiedPose(source, {h.rotation, shift.shift}, task);
-        record(h, refined ? refinedOnSamples(source, pose, task, 1) : pose);
-      });
+  runTimed(source, hypotheses.size() - first, times,
+           [&](std::size_t k, StageTimes& task) {
+             Hypothesis& h = hypotheses[first + k];
+             const auto begin = Clock::now();
+             const SpatialCorrelationResult shift =
+                 findSpatialPeak(coarseCorrelation(source, h.rotation));
+             task.translation += msSince(begin);
+             h.overlap = shift.peak_value;
+             const Pose pose = verifiedPose(source, {h.rotation, shift.shift}, task);
+             record(h, refined ? refinedOnSamples(source, pose, task, 1) : pose);
+           });
 }
 
 void addTranslationPeaks(const SourceContext& source,
@@ -117,20 +133,12 @@ void addTranslationPeaks(const SourceContext& source,
 {
   const std::size_t n = rotations.size();
   std::vector<std::vector<Pose>> extra(n);
-  const TargetModel& target = source.target;
-  const double max_shift = shiftBound(source);
   runTimed(source, n, times, [&](std::size_t k, StageTimes& task) {
     const auto begin = Clock::now();
     const Eigen::Matrix3d& R = rotations[k];
-    // The pass-1 correlation again: cheaper than keeping every volume (16 MB each).
-    SpatialVolume C = correlateSpectraWhitened(
-        target.coarse,
-        occupancySpectrum(target.coarse.grid, R * source.coarse_points, 1),
-        source.settings.whitening, 1);
-    if (std::isfinite(max_shift))
-      keepShiftsWithin(C, Eigen::Vector3d::Zero(), max_shift);
-    std::vector<SpatialCorrelationResult> peaks =
-        findDistinctSpatialPeaks(C, 1 + kExtraTranslationPeaks, kPeakSeparation);
+    // The pass-1 correlation again: cheaper than keeping every volume (8 MB each).
+    std::vector<SpatialCorrelationResult> peaks = findDistinctSpatialPeaks(
+        coarseCorrelation(source, R), 1 + kExtraTranslationPeaks, kPeakSeparation);
     task.translation += msSince(begin);
     for (std::size_t j = 1; j < peaks.size(); ++j)
       extra[k].push_back(refinedOnSamples(

@@ -108,13 +108,15 @@ RegionCloud thinForModel(const RegionCloud& cloud, int grid_size, double voxel_s
   return out;
 }
 
-void keepShiftsWithin(SpatialVolume& correlation, const Eigen::Vector3d& center,
-                      double radius)
+namespace {
+
+template <typename Volume>
+void keepShifts(Volume& correlation, const Eigen::Vector3d& center, double radius)
 {
   const SpatialGrid& grid = correlation.grid;
   if (correlation.values.empty())
     return;
-  const double lowest =
+  const auto lowest =
       *std::min_element(correlation.values.begin(), correlation.values.end());
   const auto lag = [&](int i, int n) { return 2 * i < n ? i : i - n; };
   const double radius2 = radius * radius;
@@ -128,6 +130,20 @@ void keepShiftsWithin(SpatialVolume& correlation, const Eigen::Vector3d& center,
         if ((shift - center).squaredNorm() > radius2)
           correlation.values[grid.flatIndex(ix, iy, iz)] = lowest;
       }
+}
+
+} // namespace
+
+void keepShiftsWithin(SpatialVolume& correlation, const Eigen::Vector3d& center,
+                      double radius)
+{
+  keepShifts(correlation, center, radius);
+}
+
+void keepShiftsWithin(SpatialVolumeF& correlation, const Eigen::Vector3d& center,
+                      double radius)
+{
+  keepShifts(correlation, center, radius);
 }
 
 } // namespace pcl::phaser::detail

@@ -7,6 +7,7 @@
 // Internal to the engine: how the position prior (PhaserParameters::region) restricts
 // the search; allowed_poses.h guards the answer.
 #include "spatial/spatial_correlation.h"
+#include "spatial/spatial_single.h"
 
 #include <pcl_phaser/core/parameters.h>
 #include <pcl_phaser/core/types.h>
@@ -53,6 +54,9 @@ RegionCloud thinForModel(const RegionCloud& cloud, int grid_size, double voxel_s
  *  from \a center (meters, the shift's space) to the volume's minimum, so no peak is
  *  found there. */
 void keepShiftsWithin(SpatialVolume& correlation, const Eigen::Vector3d& center,
+                      double radius);
+/** \brief keepShiftsWithin of a single-precision volume (pass 1). */
+void keepShiftsWithin(SpatialVolumeF& correlation, const Eigen::Vector3d& center,
                       double radius);
 
 } // namespace pcl::phaser::detail

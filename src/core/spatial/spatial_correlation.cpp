@@ -5,6 +5,7 @@
 #include "spatial/spatial_correlation.h"
 #include "spatial/spatial_fft.h"
 #include "spatial/spatial_grid_support.h"
+#include "spatial/spatial_single.h"
 #include "support/buffer_pool.h"
 #include "support/error.h"
 #include "support/fftw_support.h"
@@ -121,13 +122,16 @@ void sortBySlab(const Splat* all, const char* inside, std::size_t count, Splat* 
 
 /** Slab x of the voxelization: zeroes it, sums the trilinear weights W of the splats
  *  in [first, last) and turns them into the soft occupancy while the slab is in cache.
- *  Writes slab x only, in a fixed order. */
+ *  Writes slab x only, in a fixed order; the weights are formed in double and summed in
+ *  the precision of \a out. */
+template <typename RealArray>
 void accumulateSlab(const SpatialGrid& grid, int x, const Splat* first,
-                    const Splat* last, double saturation, SpatialRealArray& out)
+                    const Splat* last, double saturation, RealArray& out)
 {
+  using Real = typename RealArray::value_type;
   const int ny = grid.dims.y(), nz = grid.dims.z();
   const std::size_t slab = static_cast<std::size_t>(ny) * nz;
-  std::fill_n(out.begin() + static_cast<std::ptrdiff_t>(x * slab), slab, 0.0);
+  std::fill_n(out.begin() + static_cast<std::ptrdiff_t>(x * slab), slab, Real(0));
   for (const Splat* s = first; s != last; ++s) {
     const double wx = s->base.x() == x ? 1.0 - s->frac.x() : s->frac.x();
     for (int dy = 0; dy < 2; ++dy) {
@@ -138,7 +142,8 @@ void accumulateSlab(const SpatialGrid& grid, int x, const Splat* first,
       for (int dz = 0; dz < 2; ++dz) {
         const int z = s->base.z() + dz;
         if (z >= 0 && z < nz)
-          out[grid.flatIndex(x, y, z)] += wxy * (dz ? s->frac.z() : 1.0 - s->frac.z());
+          out[grid.flatIndex(x, y, z)] +=
+              static_cast<Real>(wxy * (dz ? s->frac.z() : 1.0 - s->frac.z()));
       }
     }
   }
@@ -146,9 +151,10 @@ void accumulateSlab(const SpatialGrid& grid, int x, const Splat* first,
   for (std::size_t i = static_cast<std::size_t>(x) * slab; i < end; ++i) {
     const double w = out[i];
     if (w <= 0.0)
-      out[i] = 0.0;
+      out[i] = Real(0);
     else
-      out[i] = saturation > 0.0 ? -saturation * std::expm1(-w / saturation) : w;
+      out[i] = static_cast<Real>(
+          saturation > 0.0 ? -saturation * std::expm1(-w / saturation) : w);
   }
 }
 
@@ -226,8 +232,12 @@ SpatialGrid makeSpatialGrid(const Eigen::Matrix3Xd& points,
   return grid;
 }
 
-SpatialVolume voxelize(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
-                       const SpatialVoxelParameters& parameters)
+namespace {
+
+/** voxelize into a volume of the precision of \a Volume. */
+template <typename Volume>
+Volume voxelizeAs(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
+                  const SpatialVoxelParameters& parameters)
 {
   checkGrid(grid, "voxelize");
   const int threads = resolveThreads(parameters.num_threads);
@@ -240,7 +250,7 @@ SpatialVolume voxelize(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
   const std::unique_ptr<Splat[]> all(new Splat[count]), sorted(new Splat[count]);
   const std::unique_ptr<char[]> inside(new char[count]);
   std::vector<std::size_t> slab_start(static_cast<std::size_t>(nx) + 2);
-  SpatialVolume volume;
+  Volume volume;
   volume.grid = grid;
   volume.values.resize(grid.size());
   // Footprints, the counting sort, then the slabs: slab x sums the splats of lower x
@@ -261,11 +271,13 @@ SpatialVolume voxelize(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
   return volume;
 }
 
-SpatialSpectrum computeSpectrum(const SpatialVolume& volume, int num_threads)
+/** computeSpectrum into a spectrum of the precision of \a Spectrum. */
+template <typename Spectrum, typename Volume>
+Spectrum spectrumOf(const Volume& volume, int num_threads)
 {
   const int threads = resolveThreads(num_threads);
   checkVolume(volume, "computeSpectrum");
-  SpatialSpectrum spectrum;
+  Spectrum spectrum;
   spectrum.grid = volume.grid;
   spectrum.coefficients.resize(static_cast<std::size_t>(volume.grid.dims.x()) *
                                volume.grid.dims.y() * spectrum.halfZ());
@@ -274,65 +286,97 @@ SpatialSpectrum computeSpectrum(const SpatialVolume& volume, int num_threads)
   return spectrum;
 }
 
+} // namespace
+
+SpatialVolume voxelize(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
+                       const SpatialVoxelParameters& parameters)
+{
+  return voxelizeAs<SpatialVolume>(grid, points, parameters);
+}
+
+SpatialSpectrum computeSpectrum(const SpatialVolume& volume, int num_threads)
+{
+  return spectrumOf<SpatialSpectrum>(volume, num_threads);
+}
+
 namespace {
 
 /** c_i = f_i conj(g_i) scale / |f_i conj(g_i)|^(1/2) (0 where the product is 0) on
- *  interleaved (re, im) doubles; \a c may be \a g. Plain arrays, compiled for AVX2 and
+ *  interleaved (re, im) values; \a c may be \a g. Inlined into the two clones below. */
+template <typename Real>
+[[gnu::always_inline]] inline void quarterWhitenedLoop(const Real* f, const Real* g,
+                                                       Real* c, std::size_t count,
+                                                       Real scale)
+{
+#pragma GCC ivdep
+  for (std::size_t i = 0; i < count; ++i) {
+    const Real fr = f[2 * i], fi = f[2 * i + 1], gr = g[2 * i], gi = g[2 * i + 1];
+    const Real re = fr * gr + fi * gi;
+    const Real im = fi * gr - fr * gi;
+    const Real n = re * re + im * im;
+    const Real w = scale / std::sqrt(std::sqrt(n)); // inf where n is 0: not taken
+    const Real kept = n > Real(0) ? w : Real(0);
+    c[2 * i] = re * kept;
+    c[2 * i + 1] = im * kept;
+  }
+}
+
+/** quarterWhitenedLoop in double and in float on plain arrays, compiled for AVX2 and
  *  the default (no FMA: the bits of the scalar loop). */
 [[gnu::target_clones("avx2", "default")]] void
 quarterWhitenedProduct(const double* f, const double* g, double* c, std::size_t count,
                        double scale)
 {
-#pragma GCC ivdep
-  for (std::size_t i = 0; i < count; ++i) {
-    const double fr = f[2 * i], fi = f[2 * i + 1], gr = g[2 * i], gi = g[2 * i + 1];
-    const double re = fr * gr + fi * gi;
-    const double im = fi * gr - fr * gi;
-    const double n = re * re + im * im;
-    const double w = scale / std::sqrt(std::sqrt(n)); // inf where n is 0: not taken
-    const double kept = n > 0.0 ? w : 0.0;
-    c[2 * i] = re * kept;
-    c[2 * i + 1] = im * kept;
-  }
+  quarterWhitenedLoop(f, g, c, count, scale);
+}
+
+[[gnu::target_clones("avx2", "default")]] void
+quarterWhitenedProduct(const float* f, const float* g, float* c, std::size_t count,
+                       float scale)
+{
+  quarterWhitenedLoop(f, g, c, count, scale);
 }
 
 /** C[i] = F[i] conj(G[i]) * scale / |F[i] conj(G[i])|^whitening (0 where the product
  *  is 0) for i in [first, first + count); \a C may be \a G. The whitening case is
  *  chosen once per run, not per element; |c|^whitening comes from the squared
  *  magnitude (std::abs calls the slow hypot). */
-void crossPowerRun(const std::complex<double>* F, const std::complex<double>* G,
-                   std::complex<double>* C, std::size_t first, std::size_t count,
-                   double scale, double whitening)
+template <typename Real>
+void crossPowerRun(const std::complex<Real>* F, const std::complex<Real>* G,
+                   std::complex<Real>* C, std::size_t first, std::size_t count,
+                   Real scale, double whitening)
 {
   const auto cross = [&](std::size_t i) {
-    const std::complex<double> f = F[i], g = G[i];
-    return std::complex<double>{f.real() * g.real() + f.imag() * g.imag(),
-                                f.imag() * g.real() - f.real() * g.imag()};
+    const std::complex<Real> f = F[i], g = G[i];
+    return std::complex<Real>{f.real() * g.real() + f.imag() * g.imag(),
+                              f.imag() * g.real() - f.real() * g.imag()};
   };
   const auto each = [&](const auto& magnitude) {
     for (std::size_t i = first; i < first + count; ++i) {
-      const std::complex<double> c = cross(i);
-      const double n = c.real() * c.real() + c.imag() * c.imag();
-      C[i] = c * (n > 0.0 ? scale / magnitude(n) : 0.0);
+      const std::complex<Real> c = cross(i);
+      const Real n = c.real() * c.real() + c.imag() * c.imag();
+      C[i] = c * (n > Real(0) ? scale / magnitude(n) : Real(0));
     }
   };
   if (whitening == 0.0)
     for (std::size_t i = first; i < first + count; ++i)
       C[i] = cross(i) * scale;
   else if (whitening == 0.5)
-    quarterWhitenedProduct(reinterpret_cast<const double*>(F + first),
-                           reinterpret_cast<const double*>(G + first),
-                           reinterpret_cast<double*>(C + first), count, scale);
+    quarterWhitenedProduct(reinterpret_cast<const Real*>(F + first),
+                           reinterpret_cast<const Real*>(G + first),
+                           reinterpret_cast<Real*>(C + first), count, scale);
   else if (whitening == 1.0)
-    each([](double n) { return std::sqrt(n); });
+    each([](Real n) { return std::sqrt(n); });
   else
-    each([whitening](double n) { return std::pow(n, 0.5 * whitening); });
+    each([whitening](Real n) {
+      return std::pow(n, static_cast<Real>(0.5 * whitening));
+    });
 }
 
 /** The number of stored coefficients of two spectra that can be correlated.
  *  \throws InvalidArgument when their grids or sizes do not match. */
-std::size_t checkedSpectrumSize(const SpatialSpectrum& target,
-                                const SpatialSpectrum& source)
+template <typename Spectrum>
+std::size_t checkedSpectrumSize(const Spectrum& target, const Spectrum& source)
 {
   checkGrid(target.grid, "correlateSpectra (target)");
   checkGrid(source.grid, "correlateSpectra (source)");
@@ -352,17 +396,20 @@ std::size_t checkedSpectrumSize(const SpatialSpectrum& target,
  *  |F conj(G)|^whitening, then the c2r (unnormalized; 1/N makes the output the plain
  *  sum when whitening is 0). The product of each run is formed inside the inverse
  *  transform's loop over rows, just before the run is transformed. */
-SpatialVolume correlateInto(const SpatialSpectrum& target,
-                            const SpatialSpectrum& source, SpatialComplexArray& out,
-                            int num_threads, double whitening = 0.0)
+template <typename Volume, typename Spectrum>
+Volume correlateInto(const Spectrum& target, const Spectrum& source,
+                     decltype(Spectrum::coefficients)& out, int num_threads,
+                     double whitening = 0.0)
 {
+  using Complex = typename decltype(Spectrum::coefficients)::value_type;
+  using Real = typename Complex::value_type;
   const int threads = resolveThreads(num_threads);
   out.resize(checkedSpectrumSize(target, source));
-  const double scale = 1.0 / static_cast<double>(target.grid.size());
-  const std::complex<double>* F = target.coefficients.data();
-  const std::complex<double>* G = source.coefficients.data();
-  std::complex<double>* C = out.data();
-  SpatialVolume correlation;
+  const Real scale = static_cast<Real>(1.0 / static_cast<double>(target.grid.size()));
+  const Complex* F = target.coefficients.data();
+  const Complex* G = source.coefficients.data();
+  Complex* C = out.data();
+  Volume correlation;
   correlation.grid = target.grid;
   correlation.grid.origin = target.grid.origin - source.grid.origin;
   correlation.values.resize(target.grid.size());
@@ -379,17 +426,65 @@ SpatialVolume correlateSpectra(const SpatialSpectrum& target,
                                const SpatialSpectrum& source, int num_threads)
 {
   SpatialComplexArray product;
-  return correlateInto(target, source, product, num_threads);
+  return correlateInto<SpatialVolume>(target, source, product, num_threads);
 }
+
+namespace {
+
+/** correlateSpectraWhitened in the precision of \a Volume and \a Spectrum. */
+template <typename Volume, typename Spectrum>
+Volume whitenedCorrelation(const Spectrum& target, Spectrum&& source, double exponent,
+                           int num_threads)
+{
+  if (!(exponent >= 0.0 && exponent <= 1.0))
+    throw InvalidArgument("correlateSpectraWhitened: exponent must be in [0, 1]");
+  Spectrum consumed = std::move(source);
+  return correlateInto<Volume>(target, consumed, consumed.coefficients, num_threads,
+                               exponent);
+}
+
+} // namespace
 
 SpatialVolume correlateSpectraWhitened(const SpatialSpectrum& target,
                                        SpatialSpectrum&& source, double exponent,
                                        int num_threads)
 {
-  if (!(exponent >= 0.0 && exponent <= 1.0))
-    throw InvalidArgument("correlateSpectraWhitened: exponent must be in [0, 1]");
-  SpatialSpectrum consumed = std::move(source);
-  return correlateInto(target, consumed, consumed.coefficients, num_threads, exponent);
+  return whitenedCorrelation<SpatialVolume>(target, std::move(source), exponent,
+                                            num_threads);
 }
+
+namespace detail {
+
+SpatialSpectrumF singlePrecision(const SpatialSpectrum& spectrum)
+{
+  SpatialSpectrumF single;
+  single.grid = spectrum.grid;
+  single.coefficients.resize(spectrum.coefficients.size());
+  std::transform(spectrum.coefficients.begin(), spectrum.coefficients.end(),
+                 single.coefficients.begin(),
+                 [](const std::complex<double>& c) { return std::complex<float>(c); });
+  return single;
+}
+
+SpatialVolumeF voxelizeSingle(const SpatialGrid& grid, const Eigen::Matrix3Xd& points,
+                              const SpatialVoxelParameters& parameters)
+{
+  return voxelizeAs<SpatialVolumeF>(grid, points, parameters);
+}
+
+SpatialSpectrumF computeSpectrum(const SpatialVolumeF& volume, int num_threads)
+{
+  return spectrumOf<SpatialSpectrumF>(volume, num_threads);
+}
+
+SpatialVolumeF correlateSpectraWhitened(const SpatialSpectrumF& target,
+                                        SpatialSpectrumF&& source, double exponent,
+                                        int num_threads)
+{
+  return whitenedCorrelation<SpatialVolumeF>(target, std::move(source), exponent,
+                                             num_threads);
+}
+
+} // namespace detail
 
 } // namespace pcl::phaser

@@ -37,7 +37,8 @@ struct SpatialAllocator {
   void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>)
   {
     // std::complex's default constructor zeroes; its bytes are written before use.
-    if constexpr (!std::is_same_v<U, std::complex<double>>)
+    if constexpr (!std::is_same_v<U, std::complex<double>> &&
+                  !std::is_same_v<U, std::complex<float>>)
       ::new (static_cast<void*>(p)) U;
   }
   template <typename U, typename... Args>

@@ -21,6 +21,9 @@ namespace detail {
  *  result is bit-identical for any thread count (FFTW's threaded plans are not). */
 void forwardFft3d(const Eigen::Vector3i& dims, const double* in,
                   std::complex<double>* out, int num_threads);
+/** \brief forwardFft3d in single precision (libfftw3f), for pass 1's correlations. */
+void forwardFft3d(const Eigen::Vector3i& dims, const float* in,
+                  std::complex<float>* out, int num_threads);
 
 /** \brief Inverse c2r 3-D DFT (unnormalized), the reverse of forwardFft3d; destroys
  *  \a in. \param[in] prepare if set, called for every run [first, first + count) of
@@ -28,6 +31,10 @@ void forwardFft3d(const Eigen::Vector3i& dims, const double* in,
  *  that run only. */
 void inverseFft3d(
     const Eigen::Vector3i& dims, std::complex<double>* in, double* out, int num_threads,
+    const std::function<void(std::size_t first, std::size_t count)>& prepare = {});
+/** \brief inverseFft3d in single precision (libfftw3f). */
+void inverseFft3d(
+    const Eigen::Vector3i& dims, std::complex<float>* in, float* out, int num_threads,
     const std::function<void(std::size_t first, std::size_t count)>& prepare = {});
 
 } // namespace detail

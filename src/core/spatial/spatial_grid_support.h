@@ -35,7 +35,9 @@ inline void checkGrid(const SpatialGrid& grid, const char* what)
                           "finite origin");
 }
 
-inline void checkVolume(const SpatialVolume& volume, const char* what)
+/** \a Volume: SpatialVolume, or SpatialVolumeF (single precision). */
+template <typename Volume>
+void checkVolume(const Volume& volume, const char* what)
 {
   checkGrid(volume.grid, what);
   if (volume.values.size() != volume.grid.size())
@@ -61,7 +63,8 @@ inline int wrapIndex(int i, int n)
 constexpr double kLogFloor = 1e-6;
 
 /** The value of \a c at the index \a p, wrapped around. */
-inline double valueAtWrapped(const SpatialVolume& c, const Eigen::Vector3i& p)
+template <typename Volume>
+double valueAtWrapped(const Volume& c, const Eigen::Vector3i& p)
 {
   const Eigen::Vector3i& n = c.grid.dims;
   return c.values[c.grid.flatIndex(wrapIndex(p.x(), n.x()), wrapIndex(p.y(), n.y()),
@@ -69,8 +72,8 @@ inline double valueAtWrapped(const SpatialVolume& c, const Eigen::Vector3i& p)
 }
 
 /** The values before \a peak on \a axis, at it and after it (wrapped). */
-inline Eigen::Vector3d axisValues(const SpatialVolume& c, const Eigen::Vector3i& peak,
-                                  int axis)
+template <typename Volume>
+Eigen::Vector3d axisValues(const Volume& c, const Eigen::Vector3i& peak, int axis)
 {
   Eigen::Vector3i before = peak, after = peak;
   --before[axis];

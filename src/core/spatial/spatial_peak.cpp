@@ -7,6 +7,7 @@
  */
 #include "spatial/spatial_correlation.h"
 #include "spatial/spatial_grid_support.h"
+#include "spatial/spatial_single.h"
 #include "support/parallel.h"
 
 #include <algorithm>
@@ -37,8 +38,8 @@ double parabolaVertex(double a, double b, double c)
   return std::clamp(0.5 * (a - c) / curvature, -0.5, 0.5);
 }
 
-Eigen::Vector3d refineAxes(const SpatialVolume& c, const Eigen::Vector3i& peak,
-                           bool use_log)
+template <typename Volume>
+Eigen::Vector3d refineAxes(const Volume& c, const Eigen::Vector3i& peak, bool use_log)
 {
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();
   for (int axis = 0; axis < 3; ++axis) {
@@ -172,7 +173,8 @@ double peakScore(const SpatialVolume& c, const Eigen::Vector3i& peak, int thread
 }
 
 /** The peak at flat index \a flat, refined (no score). */
-SpatialCorrelationResult refinedPeak(const SpatialVolume& correlation, std::size_t flat,
+template <typename Volume>
+SpatialCorrelationResult refinedPeak(const Volume& correlation, std::size_t flat,
                                      SpatialPeakRefinement refinement)
 {
   const SpatialGrid& grid = correlation.grid;
@@ -213,7 +215,8 @@ bool apartFrom(const SpatialGrid& grid, const Eigen::Vector3i& i,
 }
 
 /** Whether voxel \a i is at least as high as its six face neighbors (wrapped). */
-bool localMaximum(const SpatialVolume& c, const Eigen::Vector3i& i)
+template <typename Volume>
+bool localMaximum(const Volume& c, const Eigen::Vector3i& i)
 {
   const double v = valueAtWrapped(c, i);
   for (int a = 0; a < 3; ++a)
@@ -226,18 +229,15 @@ bool localMaximum(const SpatialVolume& c, const Eigen::Vector3i& i)
   return true;
 }
 
-} // namespace
-
-SpatialCorrelationResult findSpatialPeak(const SpatialVolume& correlation,
-                                         SpatialPeakRefinement refinement,
-                                         int num_threads, bool with_score)
+/** The flat index of the maximum of \a correlation (ties: the lowest). */
+template <typename Volume>
+std::size_t argmax(const Volume& correlation, int threads)
 {
-  checkVolume(correlation, "findSpatialPeak");
-  const int threads = resolveThreads(num_threads);
+  using Real = typename decltype(Volume::values)::value_type;
   const SpatialGrid& grid = correlation.grid;
   const int nx = grid.dims.x();
   const std::size_t slab = grid.size() / static_cast<std::size_t>(nx);
-  const double* c = correlation.values.data();
+  const Real* c = correlation.values.data();
 
   // Argmax per x-slab, then merged in slab order: ties go to the lowest flat index
   // whatever the thread count.
@@ -247,7 +247,7 @@ SpatialCorrelationResult findSpatialPeak(const SpatialVolume& correlation,
         for (std::ptrdiff_t x = first; x < last; ++x) {
           const std::size_t begin = static_cast<std::size_t>(x) * slab;
           std::size_t best = begin;
-          double highest = c[begin]; // in a register: no load of c[best] per element
+          Real highest = c[begin]; // in a register: no load of c[best] per element
           for (std::size_t i = begin + 1; i < begin + slab; ++i)
             if (c[i] > highest) {
               highest = c[i];
@@ -260,22 +260,19 @@ SpatialCorrelationResult findSpatialPeak(const SpatialVolume& correlation,
   for (std::size_t b : slab_best)
     if (c[b] > c[best])
       best = b;
-
-  SpatialCorrelationResult result = refinedPeak(correlation, best, refinement);
-  if (with_score)
-    result.score = peakScore(correlation, result.index, threads);
-  return result;
+  return best;
 }
-
-std::vector<SpatialCorrelationResult>
-findDistinctSpatialPeaks(const SpatialVolume& correlation, int count, int separation,
-                         SpatialPeakRefinement refinement)
+/** findDistinctSpatialPeaks of a volume of either precision. */
+template <typename Volume>
+std::vector<SpatialCorrelationResult> distinctPeaks(const Volume& correlation,
+                                                    int count, int separation,
+                                                    SpatialPeakRefinement refinement)
 {
   checkVolume(correlation, "findDistinctSpatialPeaks");
   if (count < 0 || separation < 0)
     throw InvalidArgument("findDistinctSpatialPeaks: negative count or separation");
   const SpatialGrid& grid = correlation.grid;
-  const double* c = correlation.values.data();
+  const auto* c = correlation.values.data();
   std::vector<SpatialCorrelationResult> peaks;
   while (static_cast<int>(peaks.size()) < count) {
     // The highest local maximum apart from the peaks taken; the tests run only on
@@ -294,5 +291,47 @@ findDistinctSpatialPeaks(const SpatialVolume& correlation, int count, int separa
   }
   return peaks;
 }
+
+} // namespace
+
+SpatialCorrelationResult findSpatialPeak(const SpatialVolume& correlation,
+                                         SpatialPeakRefinement refinement,
+                                         int num_threads, bool with_score)
+{
+  checkVolume(correlation, "findSpatialPeak");
+  const int threads = resolveThreads(num_threads);
+  SpatialCorrelationResult result =
+      refinedPeak(correlation, argmax(correlation, threads), refinement);
+  if (with_score)
+    result.score = peakScore(correlation, result.index, threads);
+  return result;
+}
+
+std::vector<SpatialCorrelationResult>
+findDistinctSpatialPeaks(const SpatialVolume& correlation, int count, int separation,
+                         SpatialPeakRefinement refinement)
+{
+  return distinctPeaks(correlation, count, separation, refinement);
+}
+
+namespace detail {
+
+SpatialCorrelationResult findSpatialPeak(const SpatialVolumeF& correlation,
+                                         SpatialPeakRefinement refinement,
+                                         int num_threads)
+{
+  checkVolume(correlation, "findSpatialPeak");
+  const int threads = resolveThreads(num_threads);
+  return refinedPeak(correlation, argmax(correlation, threads), refinement);
+}
+
+std::vector<SpatialCorrelationResult>
+findDistinctSpatialPeaks(const SpatialVolumeF& correlation, int count, int separation,
+                         SpatialPeakRefinement refinement)
+{
+  return distinctPeaks(correlation, count, separation, refinement);
+}
+
+} // namespace detail
 
 } // namespace pcl::phaser

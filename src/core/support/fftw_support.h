@@ -10,6 +10,7 @@
 #include <memory>
 #include <mutex>
 #include <new>
+#include <utility>
 
 namespace pcl::phaser {
 namespace detail {
@@ -43,39 +44,77 @@ FftwBuffer<T> fftwAllocate(std::size_t n)
   return FftwBuffer<T>(static_cast<T*>(p));
 }
 
-/** \brief Owns an fftw_plan; destroys it under the planner mutex. */
-class FftwPlan {
+/** \brief The FFTW calls of one precision: libfftw3 for double, libfftw3f for float. */
+template <typename Real>
+struct Fftw;
+
+template <>
+struct Fftw<double> {
+  using Plan = fftw_plan;
+  using Complex = fftw_complex;
+  static constexpr auto plan_r2c_2d = fftw_plan_dft_r2c_2d;
+  static constexpr auto plan_c2r_2d = fftw_plan_dft_c2r_2d;
+  static constexpr auto plan_many_dft = fftw_plan_many_dft;
+  static constexpr auto execute_r2c = fftw_execute_dft_r2c;
+  static constexpr auto execute_c2r = fftw_execute_dft_c2r;
+  static constexpr auto execute_dft = fftw_execute_dft;
+  static constexpr auto destroy_plan = fftw_destroy_plan;
+  static constexpr auto alignment_of = fftw_alignment_of;
+};
+
+template <>
+struct Fftw<float> {
+  using Plan = fftwf_plan;
+  using Complex = fftwf_complex;
+  static constexpr auto plan_r2c_2d = fftwf_plan_dft_r2c_2d;
+  static constexpr auto plan_c2r_2d = fftwf_plan_dft_c2r_2d;
+  static constexpr auto plan_many_dft = fftwf_plan_many_dft;
+  static constexpr auto execute_r2c = fftwf_execute_dft_r2c;
+  static constexpr auto execute_c2r = fftwf_execute_dft_c2r;
+  static constexpr auto execute_dft = fftwf_execute_dft;
+  static constexpr auto destroy_plan = fftwf_destroy_plan;
+  static constexpr auto alignment_of = fftwf_alignment_of;
+};
+
+/** \brief Owns a plan of FFTW in precision \a Real; destroys it under the planner
+ *  mutex (one mutex for both precisions). */
+template <typename Real>
+class BasicFftwPlan {
 public:
-  FftwPlan() = default;
-  explicit FftwPlan(fftw_plan p)
+  using Plan = typename Fftw<Real>::Plan;
+  BasicFftwPlan() = default;
+  explicit BasicFftwPlan(Plan p)
       : plan_(p)
   {
   }
-  FftwPlan(FftwPlan&& o) noexcept
+  BasicFftwPlan(BasicFftwPlan&& o) noexcept
       : plan_(o.plan_)
   {
     o.plan_ = nullptr;
   }
-  FftwPlan& operator=(FftwPlan&& o) noexcept
+  BasicFftwPlan& operator=(BasicFftwPlan&& o) noexcept
   {
     std::swap(plan_, o.plan_);
     return *this;
   }
-  FftwPlan(const FftwPlan&) = delete;
-  FftwPlan& operator=(const FftwPlan&) = delete;
-  ~FftwPlan()
+  BasicFftwPlan(const BasicFftwPlan&) = delete;
+  BasicFftwPlan& operator=(const BasicFftwPlan&) = delete;
+  ~BasicFftwPlan()
   {
     if (plan_) {
       std::lock_guard<std::mutex> lock(fftwPlannerMutex());
-      fftw_destroy_plan(plan_);
+      Fftw<Real>::destroy_plan(plan_);
     }
   }
-  fftw_plan get() const { return plan_; }
+  Plan get() const { return plan_; }
   explicit operator bool() const { return plan_ != nullptr; }
 
 private:
-  fftw_plan plan_ = nullptr;
+  Plan plan_ = nullptr;
 };
+
+/** \brief Owns an fftw_plan (double precision). */
+using FftwPlan = BasicFftwPlan<double>;
 
 } // namespace detail
 } // namespace pcl::phaser
