@@ -51,15 +51,5 @@ forEachLine(const std::string& path,
   return in.bad() ? "cannot read '" + path + "': read error" : std::string();
 }
 
-/** \brief forEachLine() with each line's fields (lineFields()). */
-inline std::string forEachLineFields(
-    const std::string& path,
-    const std::function<std::string(const std::vector<std::string>&, int)>& take)
-{
-  return forEachLine(path, [&](const std::string& text, int number) {
-    return take(lineFields(text), number);
-  });
-}
-
 } // namespace phaser
 } // namespace pcl
