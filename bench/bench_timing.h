@@ -50,15 +50,4 @@ Timing timedAlign(pcl::PhaserRegistration<PointT, PointT>& phaser)
   return {msSince(start), minorFaults() - faults, phaser.getResult().diagnostics.times};
 }
 
-/** \brief The median of \a v (the mean of the middle two for an even count); 0 when
- *  empty. */
-inline double median(std::vector<double> v)
-{
-  if (v.empty())
-    return 0.0;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 } // namespace pcl::phaser::bench

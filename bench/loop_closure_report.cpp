@@ -10,6 +10,7 @@
 #include "batch_pairs.h"
 #include "batch_records.h"
 #include "cloud_reading.h"
+#include "statistics.h"
 #include "subcommands.h"
 
 #include <pcl/filters/filter.h>
@@ -29,6 +30,7 @@ namespace batch = pcl::phaser::batch;
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
+using pcl::phaser::median;
 
 namespace {
 
@@ -130,12 +132,6 @@ void summarize(const std::vector<Row>& rows, double real_overlap)
     in_rot += w.nees_rot <= kChi3;
     in_trans += w.nees_trans <= kChi3;
   }
-  const auto median = [](std::vector<double> v) {
-    if (v.empty())
-      return std::numeric_limits<double>::quiet_NaN();
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
-  };
   const auto maximum = [](const std::vector<double>& v) {
     return v.empty() ? std::numeric_limits<double>::quiet_NaN()
                      : *std::max_element(v.begin(), v.end());
@@ -232,14 +228,9 @@ int runLoopClosure(pcl::phaser::bench::BenchArguments& args)
   std::vector<Eigen::Matrix4d> poses;
   std::string error = batch::readRecords(records_path, records, false);
   if (error.empty())
-    error = batch::readScanList(scans_path, names, paths);
-  if (error.empty())
-    error = batch::readPoses(poses_path, poses);
-  if (!error.empty() || poses.size() != names.size())
-    return std::fprintf(stderr, "%s\n",
-                        error.empty() ? "poses and scans differ in number"
-                                      : error.c_str()),
-           2;
+    error = batch::readTrajectory(scans_path, poses_path, names, paths, poses);
+  if (!error.empty())
+    return std::fprintf(stderr, "%s\n", error.c_str()), 2;
   removeDrift(Eigen::Vector3d(d[0], d[1], d[2]), names, poses);
   const std::vector<Row> rows =
       judgeRecords(records, names, paths, poses, args.text("--csv"));

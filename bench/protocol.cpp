@@ -175,22 +175,5 @@ void applyCondition(const Condition& condition, Cloud& cloud, std::mt19937& rng)
   }
 }
 
-double median(std::vector<double> values)
-{
-  return quantile(std::move(values), 0.5);
-}
-
-double quantile(std::vector<double> values, double q)
-{
-  if (values.empty())
-    return std::numeric_limits<double>::quiet_NaN();
-  std::sort(values.begin(), values.end());
-  const double rank = q * static_cast<double>(values.size() - 1);
-  const auto lo = static_cast<std::size_t>(std::floor(rank));
-  const auto hi = std::min(values.size() - 1, lo + 1);
-  const double w = rank - static_cast<double>(lo);
-  return (1.0 - w) * values[lo] + w * values[hi];
-}
-
 } // namespace bench
 } // namespace pcl::phaser

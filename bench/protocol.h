@@ -8,6 +8,8 @@
  */
 #pragma once
 
+#include "statistics.h"
+
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
@@ -68,12 +70,9 @@ void applyCondition(const Condition& condition, Cloud& cloud, std::mt19937& rng)
  */
 void keepSector(Cloud& cloud, double center, double half_width);
 
-/** \brief Median of \a values (NaN when empty); \a values is reordered. */
-double median(std::vector<double> values);
-
-/** \brief The \a q quantile (0..1, linear between ranks) of \a values (NaN when empty).
- */
-double quantile(std::vector<double> values, double q);
+// median() and quantile() (NaN when empty): statistics.h, shared with the tools.
+using pcl::phaser::median;
+using pcl::phaser::quantile;
 
 } // namespace bench
 } // namespace pcl::phaser

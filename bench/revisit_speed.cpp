@@ -11,6 +11,8 @@
 #include "cloud_reading.h"
 #include "fft_yardstick.h"
 #include "methods.h"
+#include "protocol.h"
+#include "revisits.h"
 #include "subcommands.h"
 
 #include <pcl_phaser/phaser_registration.h>
@@ -23,8 +25,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
+#include <filesystem>
 #include <string>
 #include <thread>
 #include <vector>
@@ -39,23 +40,24 @@ struct Pair {
   Cloud::Ptr source, target;
 };
 
-/** The pairs of \a file, read from its folder; false with a message when unreadable. */
-bool readPairs(const std::string& file, int max_pairs, std::vector<Pair>& pairs)
+/** The first \a max_pairs (0: all) pairs of \a file (readPairs() of revisits.h), their
+ *  scans read from its folder; false with a message when the file is absent or
+ *  malformed, or a scan unreadable. */
+bool loadPairs(const std::string& file, int max_pairs, std::vector<Pair>& pairs)
 {
-  std::ifstream in(file);
-  if (!in) {
+  if (!std::filesystem::exists(file)) {
     std::printf("skipped: %s not found (the shared data is absent)\n", file.c_str());
     return false;
   }
+  std::vector<RevisitPair> listed;
+  std::string error;
+  if (!readPairs(file, listed, error))
+    return std::fprintf(stderr, "speed: %s\n", error.c_str()), false;
   const std::string folder = file.substr(0, file.find_last_of('/') + 1);
-  std::string line;
-  while (std::getline(in, line) &&
-         (max_pairs <= 0 || static_cast<int>(pairs.size()) < max_pairs)) {
-    std::istringstream words(line);
-    std::string s, t;
-    if (line.empty() || line[0] == '#' || !(words >> s >> t))
-      continue;
-    const Pair p{loadFiniteScan(folder + s), loadFiniteScan(folder + t)};
+  for (const RevisitPair& r : listed) {
+    if (max_pairs > 0 && static_cast<int>(pairs.size()) >= max_pairs)
+      break;
+    const Pair p{loadFiniteScan(folder + r.source), loadFiniteScan(folder + r.target)};
     if (!p.source || !p.target)
       return false; // the loader said why
     pairs.push_back(p);
@@ -201,7 +203,7 @@ int runSpeed(BenchArguments& args)
   if (!args.ok())
     return args.fail();
   std::vector<Pair> pairs;
-  if (!readPairs(file, max_pairs, pairs))
+  if (!loadPairs(file, max_pairs, pairs))
     return 0;
   const double before = pcl::phaser::bench::fftYardstickMs();
   {

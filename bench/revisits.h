@@ -12,6 +12,8 @@
  */
 #pragma once
 
+#include "text_lines.h"
+
 #include <Eigen/Core>
 #include <Eigen/LU>
 
@@ -21,7 +23,6 @@
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <random>
 #include <set>
@@ -47,31 +48,6 @@ struct ScanPose {
   Eigen::Matrix4d world_lidar = Eigen::Matrix4d::Identity();
 };
 
-/** \brief Calls parse(line) on each line of a text file but blank and '#' lines; false
- * with \a error ("cannot read", or "FILE:LINE: expected ...") if one does not parse. */
-template <typename Parse>
-bool readRecords(const std::string& path, Parse parse, const std::string& expected,
-                 std::string& error)
-{
-  std::ifstream in(path);
-  if (!in) {
-    error = "cannot read " + path;
-    return false;
-  }
-  int number = 0;
-  for (std::string line; std::getline(in, line);) {
-    ++number;
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#')
-      continue;
-    if (!parse(line)) {
-      error = path + ":" + std::to_string(number) + ": expected " + expected;
-      return false;
-    }
-  }
-  return true;
-}
-
 /** \brief Parses "source target dist rot overlap" and 16 numbers; false if malformed.
  */
 inline bool parsePairLine(const std::string& line, RevisitPair& pair)
@@ -86,22 +62,20 @@ inline bool parsePairLine(const std::string& line, RevisitPair& pair)
   return !(in >> rest) && pair.truth.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1));
 }
 
-/** \brief Appends the pairs of a pairs file; false with \a error on a malformed line.
- */
+/** \brief Appends the pairs of a pairs file; false with \a error (forEachLine()) when
+ *  it cannot be read or a line is malformed. */
 inline bool readPairs(const std::string& path, std::vector<RevisitPair>& pairs,
                       std::string& error)
 {
-  auto parse = [&](const std::string& line) {
+  error = forEachLine(path, [&](const std::string& line, int) -> std::string {
     RevisitPair pair;
     if (!parsePairLine(line, pair))
-      return false;
+      return "expected 'source target dist_m rel_rot_deg overlap' and 16 numbers of a "
+             "4x4 pose";
     pairs.push_back(pair);
-    return true;
-  };
-  return readRecords(path, parse,
-                     "'source target dist_m rel_rot_deg overlap' and 16 numbers of a "
-                     "4x4 pose",
-                     error);
+    return "";
+  });
+  return error.empty();
 }
 
 /** \brief Appends the poses of a poses file ("scan_index timestamp" and the 12 numbers
@@ -109,23 +83,20 @@ inline bool readPairs(const std::string& path, std::vector<RevisitPair>& pairs,
 inline bool readScanPoses(const std::string& path, std::vector<ScanPose>& poses,
                           std::string& error)
 {
-  auto parse = [&](const std::string& line) {
+  error = forEachLine(path, [&](const std::string& line, int) -> std::string {
     std::istringstream in(line);
     ScanPose pose;
     double timestamp = 0.0;
-    if (!(in >> pose.index >> timestamp) || pose.index < 0)
-      return false;
-    for (int i = 0; i < 12; ++i)
-      if (!(in >> pose.world_lidar(i / 4, i % 4)))
-        return false;
+    bool ok = (in >> pose.index >> timestamp) && pose.index >= 0;
+    for (int i = 0; ok && i < 12; ++i)
+      ok = static_cast<bool>(in >> pose.world_lidar(i / 4, i % 4));
     std::string rest;
-    if (in >> rest)
-      return false;
+    if (!ok || in >> rest)
+      return "expected 'scan_index timestamp' and 12 numbers of a 3x4 pose";
     poses.push_back(pose);
-    return true;
-  };
-  return readRecords(path, parse, "'scan_index timestamp' and 12 numbers of a 3x4 pose",
-                     error);
+    return "";
+  });
+  return error.empty();
 }
 
 constexpr int kDerivedMinGap = 18;      ///< |source - target| scan index, a revisit

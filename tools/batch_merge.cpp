@@ -3,10 +3,10 @@
 //
 // mergeParts(): shard outputs joined into one file, loudly refusing gaps and repeats.
 #include "batch_records.h"
+#include "text_lines.h"
 
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -70,22 +70,15 @@ std::string mergeGraphs(const std::string& out, const std::vector<std::string>& 
   std::map<std::pair<int, int>, std::set<std::string>> edges;
   std::set<int> fixed;
   for (const std::string& part : parts) {
-    std::ifstream in(part);
-    if (!in)
-      return "cannot read '" + part + "'";
-    int number = 0;
-    for (std::string line; std::getline(in, line);) {
-      ++number;
+    const std::string error = forEachLine(part, [&](const std::string& line, int) {
       std::istringstream fields(line);
       std::string tag;
       int a = -1, b = -1;
-      if (!(fields >> tag))
-        continue;
-      const std::string at = "'" + part + "' line " + std::to_string(number);
+      fields >> tag;
       if (tag == "VERTEX_SE3:QUAT" && fields >> a) {
         const auto [it, fresh] = vertices.emplace(a, line);
         if (!fresh && it->second != line)
-          return at + ": vertex " + std::to_string(a) + " differs from another part's";
+          return "vertex " + std::to_string(a) + " differs from another part's";
       } else if (tag == "EDGE_SE3:QUAT" && fields >> a >> b) {
         // Odometry edges come with every part, the same (kept once); a loop edge comes
         // with the one part that holds its pair (beside the odometry edge of the pair
@@ -93,13 +86,16 @@ std::string mergeGraphs(const std::string& out, const std::vector<std::string>& 
         std::set<std::string>& lines = edges[{a, b}];
         lines.insert(line);
         if (lines.size() > 2)
-          return at + ": edge " + std::to_string(a) + " " + std::to_string(b) +
+          return "edge " + std::to_string(a) + " " + std::to_string(b) +
                  " differs between parts";
       } else if (tag == "FIX" && fields >> a) {
         fixed.insert(a);
       } else
-        return at + ": not a VERTEX_SE3:QUAT, FIX or EDGE_SE3:QUAT line";
-    }
+        return std::string("not a VERTEX_SE3:QUAT, FIX or EDGE_SE3:QUAT line");
+      return std::string();
+    });
+    if (!error.empty())
+      return error;
   }
   std::string text;
   for (const auto& [id, line] : vertices)

@@ -3,6 +3,7 @@
 //
 #include "batch_pairs.h"
 #include "engine_options.h"
+#include "text_lines.h"
 
 #include <Eigen/LU>
 
@@ -11,27 +12,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
-#include <fstream>
-#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 namespace pcl {
 namespace phaser {
 namespace batch {
 namespace {
-
-/** \brief The line without its comment, split at white space. */
-std::vector<std::string> tokens(const std::string& line)
-{
-  std::istringstream in(line.substr(0, line.find('#')));
-  std::vector<std::string> out;
-  for (std::string t; in >> t;)
-    out.push_back(t);
-  return out;
-}
 
 /** \brief A finite number, or nothing. */
 std::optional<double> number(const std::string& text)
@@ -78,26 +65,6 @@ std::optional<Eigen::Matrix4d> rigid3x4(const std::vector<std::string>& t,
   return m;
 }
 
-/** \brief Call \a take with the fields of each line that has any, and stop at the
- *  first reason it returns (prefixed with the file and the line). */
-std::string forEachLine(
-    const std::string& path,
-    const std::function<std::string(const std::vector<std::string>&, int)>& take)
-{
-  std::ifstream in(path);
-  if (!in)
-    return "cannot read '" + path + "': " + std::strerror(errno);
-  int line_number = 0;
-  for (std::string line; std::getline(in, line);) {
-    const std::vector<std::string> t = tokens(line);
-    if (++line_number, t.empty())
-      continue;
-    if (std::string reason = take(t, line_number); !reason.empty())
-      return "'" + path + "' line " + std::to_string(line_number) + ": " + reason;
-  }
-  return in.bad() ? "cannot read '" + path + "': read error" : std::string();
-}
-
 int idOf(const std::string& name, PairList& list, std::map<std::string, int>& ids)
 {
   const auto [it, added] = ids.emplace(name, static_cast<int>(list.names.size()));
@@ -129,7 +96,8 @@ std::string readPairList(const std::string& path, PairList& list)
   const std::string folder = folderOf(path);
   std::map<std::string, int> ids;
   std::map<std::pair<std::string, std::string>, int> seen;
-  return forEachLine(path, [&](const std::vector<std::string>& t, int line) {
+  return forEachLine(path, [&](const std::string& text, int line) {
+    const std::vector<std::string> t = lineFields(text);
     if (t.size() != 2 && t.size() != 14)
       return "expected SOURCE TARGET [12 numbers], got " + std::to_string(t.size()) +
              " fields";
@@ -165,7 +133,8 @@ std::string readScanList(const std::string& path, std::vector<std::string>& give
 {
   given.clear();
   resolved.clear();
-  return forEachLine(path, [&](const std::vector<std::string>& t, int) {
+  return forEachLine(path, [&](const std::string& text, int) {
+    const std::vector<std::string> t = lineFields(text);
     if (t.size() != 1)
       return std::string("expected one path per line");
     if (!isUtf8(t[0]))
@@ -181,7 +150,8 @@ std::string readScanList(const std::string& path, std::vector<std::string>& give
 std::string readPoses(const std::string& path, std::vector<Eigen::Matrix4d>& poses)
 {
   poses.clear();
-  return forEachLine(path, [&](const std::vector<std::string>& t, int) {
+  return forEachLine(path, [&](const std::string& text, int) {
+    const std::vector<std::string> t = lineFields(text);
     const std::optional<Eigen::Matrix4d> pose =
         t.size() < 12 ? std::nullopt : rigid3x4(t, t.size() - 12);
     if (!pose)
@@ -189,6 +159,21 @@ std::string readPoses(const std::string& path, std::vector<Eigen::Matrix4d>& pos
     poses.push_back(*pose);
     return std::string();
   });
+}
+
+std::string readTrajectory(const std::string& scans, const std::string& poses_path,
+                           std::vector<std::string>& given,
+                           std::vector<std::string>& resolved,
+                           std::vector<Eigen::Matrix4d>& poses)
+{
+  std::string error = readScanList(scans, given, resolved);
+  if (error.empty())
+    error = readPoses(poses_path, poses);
+  if (error.empty() && poses.size() != given.size())
+    error = "'" + poses_path + "' holds " + std::to_string(poses.size()) +
+            " poses for the " + std::to_string(given.size()) + " scans of '" + scans +
+            "'";
+  return error;
 }
 
 PairList makeCandidates(const std::vector<std::string>& given,

@@ -67,6 +67,13 @@ std::string readScanList(const std::string& path, std::vector<std::string>& give
  *  \return empty on success, else the reason */
 std::string readPoses(const std::string& path, std::vector<Eigen::Matrix4d>& poses);
 
+/** \brief Read a scan list and its poses (readScanList(), readPoses()), one pose per
+ *  scan. \return empty on success, else the reason (a count that differs too) */
+std::string readTrajectory(const std::string& scans, const std::string& poses_path,
+                           std::vector<std::string>& given,
+                           std::vector<std::string>& resolved,
+                           std::vector<Eigen::Matrix4d>& poses);
+
 /** \brief Loop-closure candidates: every pair of scans i < j with j - i >= \a min_gap
  *  whose positions lie within \a radius meters; the earlier scan is the target, so
  *  each measurement is T_i_j. Ids are the scans' positions in the list.

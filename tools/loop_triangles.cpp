@@ -3,6 +3,7 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  */
 #include "loop_triangles.h"
+#include "statistics.h"
 
 #include <Eigen/Geometry>
 
@@ -73,14 +74,6 @@ Closure close(int a, int b, int c, const Measured& ab, const Measured& bc,
   out.nees_translation = mahalanobis<3>(out.residual.tail<3>(),
                                         Eigen::Matrix3d(S.bottomRightCorner<3, 3>()));
   return out;
-}
-
-double median(std::vector<double> v)
-{
-  if (v.empty())
-    return std::nan("");
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-  return v[v.size() / 2];
 }
 
 } // namespace

@@ -176,13 +176,8 @@ int candidates(const Given& given, batch::PairList& list)
     return rc;
   std::vector<std::string> names, paths;
   std::vector<Eigen::Matrix4d> poses;
-  std::string error = batch::readScanList(given.at("--scans"), names, paths);
-  if (error.empty())
-    error = batch::readPoses(given.at("--poses"), poses);
-  if (error.empty() && poses.size() != names.size())
-    error = "'" + given.at("--poses") + "' holds " + std::to_string(poses.size()) +
-            " poses for the " + std::to_string(names.size()) + " scans of '" +
-            given.at("--scans") + "'";
+  const std::string error = batch::readTrajectory(
+      given.at("--scans"), given.at("--poses"), names, paths, poses);
   if (!error.empty())
     return print_error("%s\n", error.c_str()), batch::kInput;
   list = batch::makeCandidates(names, paths, poses, radius, gap);

@@ -60,12 +60,7 @@ int main(int argc, char** argv)
   const std::string& out = line.files[2];
   std::vector<std::string> names, paths;
   std::vector<Eigen::Matrix4d> poses;
-  error = pcl::phaser::batch::readScanList(scans, names, paths);
-  if (error.empty())
-    error = pcl::phaser::batch::readPoses(poses_file, poses);
-  if (error.empty() && poses.size() != paths.size())
-    error = "'" + poses_file + "' holds " + std::to_string(poses.size()) +
-            " poses for " + std::to_string(paths.size()) + " scans";
+  error = pcl::phaser::batch::readTrajectory(scans, poses_file, names, paths, poses);
   if (!error.empty())
     return std::fprintf(stderr, "Error: %s\n", error.c_str()), kInput;
   pcl::phaser::MapBuilder map(voxel);

@@ -3,13 +3,13 @@
  * Copyright (c) 2026, the pcl_phaser developers.
  */
 #include "pose_graph.h"
+#include "text_lines.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 
 #include <ceres/ceres.h>
 #include <cmath>
-#include <fstream>
 #include <iterator>
 #include <limits>
 #include <memory>
@@ -95,32 +95,28 @@ bool readVertex(std::istringstream& fields, PoseGraph& graph)
 
 std::string readG2o(const std::string& path, PoseGraph& graph)
 {
-  std::ifstream in(path);
-  if (!in)
-    return "cannot read '" + path + "'";
-  int number = 0;
-  for (std::string line; std::getline(in, line);) {
-    ++number;
+  const std::string error = forEachLine(path, [&](const std::string& line, int) {
     std::istringstream fields(line);
     std::string tag;
-    if (!(fields >> tag) || tag[0] == '#')
-      continue;
-    const std::string at = "'" + path + "' line " + std::to_string(number);
     int id = 0;
     Edge edge;
+    fields >> tag;
     if (tag == "VERTEX_SE3:QUAT") {
       if (!readVertex(fields, graph))
-        return at + ": expected VERTEX_SE3:QUAT id x y z qx qy qz qw, a new id";
+        return "expected VERTEX_SE3:QUAT id x y z qx qy qz qw, a new id";
     } else if (tag == "EDGE_SE3:QUAT") {
       if (!readEdge(fields, edge))
-        return at + ": expected EDGE_SE3:QUAT i j x y z qx qy qz qw (i != j) and 21 "
-                    "information entries (positive definite)";
+        return "expected EDGE_SE3:QUAT i j x y z qx qy qz qw (i != j) and 21 "
+               "information entries (positive definite)";
       graph.edges.push_back(edge);
     } else if (tag == "FIX" && fields >> id) {
       graph.fixed.insert(id);
     } else
-      return at + ": not a VERTEX_SE3:QUAT, EDGE_SE3:QUAT or FIX line";
-  }
+      return "not a VERTEX_SE3:QUAT, EDGE_SE3:QUAT or FIX line";
+    return "";
+  });
+  if (!error.empty())
+    return error;
   for (const Edge& e : graph.edges)
     if (!graph.vertices.count(e.from) || !graph.vertices.count(e.to))
       return "'" + path + "': edge " + std::to_string(e.from) + " " +

@@ -30,5 +30,5 @@ PY
 grep -q '"converged":false' "$work/far.jsonl" || fail "a region 25 m away converged"
 ! "$MAP" "$work/map_scans.txt" "$work/all_poses.txt" "$work/m.pcd" 2> "$work/err.txt" ||
   fail "pcl_phaser_map took 30 poses for 15 scans"
-grep -q "holds 30 poses for 15 scans" "$work/err.txt" || fail "$(cat "$work/err.txt")"
+grep -q "holds 30 poses for the 15 scans" "$work/err.txt" || fail "$(cat "$work/err.txt")"
 echo "PASSED: a map from 15 scans; a query left out of it relocalized within a region"
