@@ -39,6 +39,20 @@ inline SpatialVolume zeroVolume(const Eigen::Vector3i& dims, double voxel = 0.5)
   return v;
 }
 
+/** A volume of 0.25 m voxels holding standard normal values. */
+inline SpatialVolume randomVolume(const Eigen::Vector3i& dims, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> n;
+  SpatialVolume v;
+  v.grid.dims = dims;
+  v.grid.voxel_size = 0.25;
+  v.values.assign(v.grid.size(), 0.0);
+  for (double& x : v.values)
+    x = n(rng);
+  return v;
+}
+
 inline bool bitIdentical(const SpatialRealArray& a, const SpatialRealArray& b)
 {
   return a.size() == b.size() &&

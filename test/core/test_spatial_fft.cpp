@@ -8,6 +8,7 @@
  * independence of the thread count.
  */
 #include "spatial/spatial_correlation.h"
+#include "spatial_test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -18,21 +19,9 @@
 #include <random>
 
 using namespace pcl::phaser;
+using pcl::phaser::test::randomVolume;
 
 namespace {
-
-SpatialVolume randomVolume(const Eigen::Vector3i& dims, unsigned seed)
-{
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> n;
-  SpatialVolume v;
-  v.grid.dims = dims;
-  v.grid.voxel_size = 0.25;
-  v.values.assign(v.grid.size(), 0.0);
-  for (double& x : v.values)
-    x = n(rng);
-  return v;
-}
 
 /** The half-spectrum entry (kx, ky, kz) by the definition: sum f e^{-2 pi i k.x/n}. */
 std::complex<double> directDft(const SpatialVolume& v, int kx, int ky, int kz)

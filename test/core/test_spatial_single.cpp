@@ -16,23 +16,11 @@
 #include <cstring>
 
 using namespace pcl::phaser;
+using pcl::phaser::test::randomVolume;
 using namespace pcl::phaser::detail;
 using pcl::phaser::test::sceneBox;
 
 namespace {
-
-SpatialVolume randomVolume(const Eigen::Vector3i& dims, unsigned seed)
-{
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> n;
-  SpatialVolume v;
-  v.grid.dims = dims;
-  v.grid.voxel_size = 0.25;
-  v.values.assign(v.grid.size(), 0.0);
-  for (double& x : v.values)
-    x = n(rng);
-  return v;
-}
 
 SpatialVolumeF rounded(const SpatialVolume& v)
 {
