@@ -5,7 +5,7 @@
  * numpy out: pcl_phaser.Result and what it holds (Verification, Hypothesis,
  * StageTimes, Diagnostics), read-only; matrices are numpy arrays.
  */
-#include "bindings.h"
+#include "field_properties.h"
 
 #include <Eigen/Geometry>
 
@@ -49,13 +49,12 @@ std::string reprOf(const PhaserResult& r)
 
 void bindParts(py::module_& m)
 {
-  py::class_<Verification>(m, "Verification", "How a pose verifies; shares in [0, 1].")
-      .def_readonly("inlier_fraction", &Verification::inlier_fraction)
+  py::class_<Verification> verification(m, "Verification",
+                                        "How a pose verifies; shares in [0, 1].");
+  bindFieldProperties(verification,
+                      [](auto& v, auto&& f) { visitVerificationFields(v, f); });
+  verification // the short names of verification_score and verification_rank
       .def_readonly("score", &Verification::score)
-      .def_readonly("free_space_violation", &Verification::free_space_violation)
-      .def_readonly("reverse_free_space_violation",
-                    &Verification::reverse_free_space_violation)
-      .def_readonly("constraint", &Verification::constraint)
       .def_readonly("rank", &Verification::rank)
       .def("__repr__", [](const Verification& v) {
         return format("Verification(inlier_fraction=%.4f, score=%.4f, ",
@@ -64,29 +63,19 @@ void bindParts(py::module_& m)
                       v.free_space_violation, v.reverse_free_space_violation) +
                format("constraint=%.4f, rank=%.4f)", v.constraint, v.rank);
       });
-  py::class_<Hypothesis>(m, "Hypothesis", "A verified hypothesis of the global search.")
-      .def_readonly("transformation", &Hypothesis::transformation)
-      .def_readonly("rotation", &Hypothesis::rotation)
-      .def_readonly("translation", &Hypothesis::translation)
-      .def_readonly("rotation_score", &Hypothesis::rotation_score)
-      .def_readonly("overlap", &Hypothesis::overlap)
-      .def_readonly("from_orientation", &Hypothesis::from_orientation)
-      .def_readonly("verification", &Hypothesis::verification)
+  py::class_<Hypothesis> hypothesis(m, "Hypothesis",
+                                    "A verified hypothesis of the global search.");
+  bindFieldProperties(hypothesis,
+                      [](auto& h, auto&& f) { visitHypothesisFields(h, f); });
+  hypothesis.def_readonly("verification", &Hypothesis::verification)
       .def("__repr__", [](const Hypothesis& h) {
         return format("Hypothesis(rotation %.3f deg, rank %.4f, from_orientation=",
                       rotationDeg(h.transformation), h.verification.rank) +
                (h.from_orientation ? "True)" : "False)");
       });
-  py::class_<StageTimes>(m, "StageTimes", "Milliseconds spent in each stage.")
-      .def_readonly("target", &StageTimes::target)
-      .def_readonly("sampling", &StageTimes::sampling)
-      .def_readonly("sht", &StageTimes::sht)
-      .def_readonly("so3", &StageTimes::so3)
-      .def_readonly("refinement", &StageTimes::refinement)
-      .def_readonly("translation", &StageTimes::translation)
-      .def_readonly("verification", &StageTimes::verification)
-      .def_readonly("orientation", &StageTimes::orientation)
-      .def_property_readonly("total", &StageTimes::total)
+  py::class_<StageTimes> times(m, "StageTimes", "Milliseconds spent in each stage.");
+  bindFieldProperties(times, [](auto& t, auto&& f) { visitStageTimes(t, f); });
+  times.def_property_readonly("total", &StageTimes::total)
       .def("__repr__", [](const StageTimes& t) {
         return format("StageTimes(total %.1f ms, target %.1f ms)", t.total(), t.target);
       });
@@ -95,19 +84,13 @@ void bindParts(py::module_& m)
 void bindDiagnostics(py::module_& m)
 {
   using D = PhaserDiagnostics;
-  py::class_<D>(m, "Diagnostics", "What one align measured on the way to its answer.")
-      .def_readonly("rotation_score", &D::rotation_score)
-      .def_readonly("translation_score", &D::translation_score)
-      .def_readonly("normalized_overlap", &D::normalized_overlap)
-      .def_readonly("verification", &D::verification)
-      .def_readonly("runner_up_rank", &D::runner_up_rank)
-      .def_readonly("runner_up_error", &D::runner_up_error)
-      .def_readonly("verification_radius", &D::verification_radius)
-      .def_readonly("verification_samples", &D::verification_samples)
-      .def_readonly("verified", &D::verified)
-      .def_readonly("refusal", &D::refusal)
+  py::class_<D> diagnostics(m, "Diagnostics",
+                            "What one align measured on the way to its answer: the "
+                            "fields of the tools' JSON, and the lists behind them.");
+  bindFieldProperties(diagnostics,
+                      [](auto& d, auto&& f) { visitDiagnosticsFields(d, f); });
+  diagnostics.def_readonly("verification", &D::verification)
       .def_readonly("hypotheses", &D::hypotheses)
-      .def_readonly("passes", &D::passes)
       .def_readonly("rotation_samples", &D::rotation_samples)
       .def_readonly("rotation_weights", &D::rotation_weights)
       .def_readonly("times", &D::times);
@@ -120,25 +103,17 @@ void bindResult(py::module_& m)
   bindParts(m);
   bindDiagnostics(m);
   using R = PhaserResult;
-  py::class_<R>(m, "Result",
-                "What one align found: transformation (T_target_source, p_target = T "
-                "p_source), converged, covariance (6 x 6, rotation vector then "
-                "translation), the verification figures, hypotheses, stage timings; "
-                "error: why it was refused ('' on success).")
-      .def_readonly("error", &R::error)
-      .def_readonly("transformation", &R::transformation)
-      .def_readonly("converged", &R::converged)
-      .def_readonly("covariance", &R::covariance)
-      .def_readonly("projection_center", &R::projection_center)
-      .def_readonly("chosen_hypothesis", &R::chosen_hypothesis)
-      .def_readonly("lever_arm", &R::lever_arm)
-      .def_readonly("translation_covariance", &R::translation_covariance)
-      .def_readonly("fit_covariance", &R::fit_covariance)
-      .def_readonly("diagnostics", &R::diagnostics)
+  py::class_<R> result(
+      m, "Result",
+      "What one align found: transformation (T_target_source, p_target = "
+      "T p_source), converged, covariance (6 x 6, rotation vector then "
+      "translation), every field of the tools' JSON under its key "
+      "(verification_rank, stages_ms, hypotheses, ...); error: why it "
+      "was refused ('' on success).");
+  bindFieldProperties(result, [](auto& r, auto&& f) { visitResultState(r, f); });
+  result.def_readonly("diagnostics", &R::diagnostics)
       .def_property_readonly("verification",
                              [](const R& r) { return r.diagnostics.verification; })
-      .def_property_readonly("hypotheses",
-                             [](const R& r) { return r.diagnostics.hypotheses; })
       .def_property_readonly("times", [](const R& r) { return r.diagnostics.times; })
       .def("__repr__", &reprOf)
       .def("to_dict", &resultState,

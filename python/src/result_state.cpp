@@ -6,9 +6,7 @@
  * for to_dict() and pickle: floats and float64 arrays keep every bit, so that results
  * pickled by multiprocessing or dask.distributed equal the ones computed in the caller.
  */
-#include "bindings.h"
-
-#include <pcl_phaser/core/result.h>
+#include "field_properties.h"
 
 #include <type_traits>
 #include <vector>
@@ -16,34 +14,6 @@
 namespace pcl::phaser::python {
 
 namespace {
-
-/** Sets dict[name] to each field: groups as dicts, lists as lists of dicts. */
-struct DictWriter {
-  py::dict dict;
-  template <typename T>
-  void operator()(const char* name, const T& value)
-  {
-    dict[name] = py::cast(value, py::return_value_policy::copy);
-  }
-  template <typename Visit>
-  void operator()(const char* name, const FieldGroup<Visit>& group)
-  {
-    DictWriter members;
-    group.visit(members);
-    dict[name] = members.dict;
-  }
-  template <typename Items, typename Visit>
-  void operator()(const char* name, const FieldList<Items, Visit>& list)
-  {
-    py::list out;
-    for (const auto& item : list.items) {
-      DictWriter fields;
-      list.visit(item, fields);
-      out.append(fields.dict);
-    }
-    dict[name] = out;
-  }
-};
 
 /** \a h as a T. Fixed-size Eigen types go through a dynamic matrix: GCC warns of
  *  uninitialized storage in pybind11's fixed-size caster. */

@@ -110,6 +110,27 @@ def test_to_dict_has_the_keys_of_the_tools_json(synthetic_pair):
         broken.__setstate__(fields)
 
 
+def test_every_field_is_an_attribute_named_by_its_key(synthetic_pair):
+    # Result, Diagnostics, Hypothesis and StageTimes attributes come from core/result.h's
+    # field lists: each key of to_dict() is an attribute holding the same value.
+    source, target, _ = synthetic_pair
+    result = pcl_phaser.align(source, target, params={"num_threads": 1})
+    fields = result.to_dict()
+    for key, value in fields.items():
+        if key == "hypotheses":
+            for h, d in zip(result.hypotheses, value):
+                for k, v in d.items():
+                    np.testing.assert_array_equal(getattr(h, k), v, err_msg=k)
+        elif key == "stages_ms":
+            assert getattr(result, key) == value == result.diagnostics.stages_ms
+            assert all(getattr(result.times, k) == v for k, v in value.items())
+        else:
+            np.testing.assert_array_equal(getattr(result, key), value, err_msg=key)
+    for key in ["verification_rank", "runner_up_rank", "passes", "refusal"]:
+        assert getattr(result.diagnostics, key) == fields[key]
+    assert result.verification.verification_rank == result.verification.rank
+
+
 def test_a_guess_is_composed(synthetic_pair):
     source, target, _ = synthetic_pair
     params = pcl_phaser.Parameters(num_threads=1)

@@ -169,13 +169,11 @@ void visitStageTimes(T& t, Visitor&& visitor)
   visitor("verification", t.verification);
 }
 
-/** \brief The figures of a [const] PhaserResult that every writer writes (the tools
- *  after their "transformation" and "converged"); runner_up_rank -infinity: none. */
-template <class R, class Visitor>
-void visitResultFields(R& r, Visitor&& visitor)
+/** \brief The figures of a [const] PhaserDiagnostics that every writer writes, the
+ *  verification's flat; runner_up_rank -infinity: none. */
+template <class D, class Visitor>
+void visitDiagnosticsFields(D& d, Visitor&& visitor)
 {
-  auto& d = r.diagnostics;
-  visitor("covariance", r.covariance);
   visitor("rotation_score", d.rotation_score);
   visitor("translation_score", d.translation_score);
   visitor("normalized_overlap", d.normalized_overlap);
@@ -191,8 +189,31 @@ void visitResultFields(R& r, Visitor&& visitor)
   visitor("stages_ms", FieldGroup<decltype(times)>{times});
 }
 
+/** \brief The figures of a [const] PhaserResult that every writer writes (the tools
+ *  after their "transformation" and "converged"): its covariance and diagnostics. */
+template <class R, class Visitor>
+void visitResultFields(R& r, Visitor&& visitor)
+{
+  visitor("covariance", r.covariance);
+  visitDiagnosticsFields(r.diagnostics, visitor);
+}
+
+/** \brief A [const] Hypothesis's fields by its members' names, the verification's flat.
+ */
+template <class H, class Visitor>
+void visitHypothesisFields(H& h, Visitor&& visitor)
+{
+  visitor("transformation", h.transformation);
+  visitor("rotation", h.rotation);
+  visitor("translation", h.translation);
+  visitor("rotation_score", h.rotation_score);
+  visitor("overlap", h.overlap);
+  visitor("from_orientation", h.from_orientation);
+  visitVerificationFields(h.verification, visitor);
+}
+
 /** \brief Every field of a [const] PhaserResult, what restores it exactly: those of
- *  visitResultFields() and the rest; a hypothesis by its members' names. */
+ *  visitResultFields() and the rest; a hypothesis by visitHypothesisFields(). */
 template <class R, class Visitor>
 void visitResultState(R& r, Visitor&& visitor)
 {
@@ -205,12 +226,7 @@ void visitResultState(R& r, Visitor&& visitor)
   visitor("translation_covariance", r.translation_covariance);
   visitor("fit_covariance", r.fit_covariance);
   visitResultFields(r, visitor);
-  const auto each = [](auto& h, auto&& v) {
-    v("transformation", h.transformation), v("rotation", h.rotation);
-    v("translation", h.translation), v("rotation_score", h.rotation_score);
-    v("overlap", h.overlap), v("from_orientation", h.from_orientation);
-    visitVerificationFields(h.verification, v);
-  };
+  const auto each = [](auto& h, auto&& v) { visitHypothesisFields(h, v); };
   auto& hypotheses = r.diagnostics.hypotheses;
   visitor("hypotheses",
           FieldList<decltype(hypotheses), decltype(each)>{hypotheses, each});
