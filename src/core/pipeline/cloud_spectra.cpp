@@ -23,8 +23,8 @@ SphericalSpectrum sphericalSpectrum(const Eigen::Matrix3Xd& points,
 {
   int observed = 0;
   SphericalSpectrum F = cloudSphericalSpectrum(
-      points, channels, settings.bandwidth, settings.fusion_levels, num_threads,
-      observed, times.sampling, times.sht, support);
+      points, channels, settings.params.bandwidth, settings.params.fusion_levels,
+      num_threads, observed, times.sampling, times.sht, support);
   if (observed < 2)
     throw InvalidArgument(
         std::string(which) +

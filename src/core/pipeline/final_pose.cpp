@@ -30,14 +30,15 @@ Eigen::Matrix3d refineResidualRotation(const SourceContext& source,
   const auto start = Clock::now();
   const StageSettings& settings = source.settings;
   const TargetModel& target = source.target;
-  RefinedRotation refined =
-      refineRotation(target.spherical, view.H, R, settings.bandwidth,
-                     settings.refinement_iterations, settings.num_threads);
-  if (settings.normalized_refinement)
+  RefinedRotation refined = refineRotation(
+      target.spherical, view.H, R, settings.params.bandwidth,
+      settings.params.refinement_iterations, settings.params.num_threads);
+  if (settings.params.normalized_refinement)
     refined = refineRotation(
-        target.spherical, view.H, refined.rotation, settings.bandwidth,
-        settings.refinement_iterations, settings.num_threads, &target.spherical_support,
-        &view.support, kNormalizedRefinementRadius * 64.0 / settings.bandwidth);
+        target.spherical, view.H, refined.rotation, settings.params.bandwidth,
+        settings.params.refinement_iterations, settings.params.num_threads,
+        &target.spherical_support, &view.support,
+        kNormalizedRefinementRadius * 64.0 / settings.params.bandwidth);
   value = refined.value;
   times.refinement += msSince(start);
   return refined.rotation;
@@ -85,19 +86,20 @@ bool finalShift(const SourceContext& source, Pose& next, PhaserResult& result)
 {
   const TargetModel& target = source.target;
   const StageSettings& settings = source.settings;
-  const bool single = settings.passes == 1;
+  const bool single = settings.params.passes == 1;
   const SpatialSpectrum& grid = single ? target.coarse : target.fine;
   const double grid_energy = single ? target.coarse_energy : target.fine_energy;
   StageTimes& times = result.diagnostics.times;
   SpatialVolume volume;
   double energy = 0.0;
-  const SpatialCorrelationResult shift = correlateTranslation(
-      grid, (next.R * source.points).colwise() + next.t,
-      single ? settings.whitening : 0.0, settings.num_threads, times, &volume, &energy);
+  const SpatialCorrelationResult shift =
+      correlateTranslation(grid, (next.R * source.points).colwise() + next.t,
+                           single ? settings.params.whitening : 0.0,
+                           settings.params.num_threads, times, &volume, &energy);
   if (!(energy > 0.0))
     return false;
   next.t += shift.shift;
-  next.verification = verificationOf(source, next, times, settings.num_threads);
+  next.verification = verificationOf(source, next, times, settings.params.num_threads);
   result.diagnostics.translation_score = shift.score;
   const double peak = volume.values.empty()
                           ? 0.0
@@ -122,7 +124,7 @@ Pose refineFinalPose(const SourceContext& source, Pose pose, bool decided,
   const std::shared_ptr<const Viewpoint> view = finalViewpoint(source, pose, times);
   const Eigen::Matrix3d start =
       after_pass ? Eigen::Matrix3d::Identity()
-                 : rotationFromEuler(gridEuler(pose.peak, settings.bandwidth));
+                 : rotationFromEuler(gridEuler(pose.peak, settings.params.bandwidth));
   const std::shared_ptr<const So3CorrelationGrid> rotation_grid = pose.grid;
   const So3GridIndex peak = pose.peak;
   double value = (*rotation_grid)(peak);
@@ -139,7 +141,7 @@ Pose refineFinalPose(const SourceContext& source, Pose pose, bool decided,
   if (measured && improves(next, pose))
     pose = next;
   if (pose.verifiable)
-    pose = refinedOnSamples(source, pose, times, settings.num_threads, true);
+    pose = refinedOnSamples(source, pose, times, settings.params.num_threads, true);
   rotationSamples(*rotation_grid, peak, pose.R, result.diagnostics);
   return pose;
 }

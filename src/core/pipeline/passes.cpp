@@ -24,10 +24,10 @@ std::shared_ptr<Viewpoint> viewFrom(const SourceContext& source, const RigidPose
 {
   const StageSettings& settings = source.settings;
   auto view = std::make_shared<Viewpoint>();
-  view->H =
-      sphericalSpectrum((pose.R * source.points).colwise() + pose.t, source.channels,
-                        settings, settings.num_threads, "source", times,
-                        settings.normalized_refinement ? &view->support : nullptr);
+  view->H = sphericalSpectrum(
+      (pose.R * source.points).colwise() + pose.t, source.channels, settings,
+      settings.params.num_threads, "source", times,
+      settings.params.normalized_refinement ? &view->support : nullptr);
   return view;
 }
 
@@ -36,13 +36,13 @@ void residualGrid(const SourceContext& source, const SphericalSpectrum& H, Pose&
 {
   const auto start = Clock::now();
   const StageSettings& settings = source.settings;
-  const int rows = betaRowsForTilt(settings.bandwidth, kResidualTilt);
+  const int rows = betaRowsForTilt(settings.params.bandwidth, kResidualTilt);
   auto C = std::make_shared<So3CorrelationGrid>(
-      So3Correlator::instance(settings.bandwidth)
-          ->correlate(source.target.spherical, H, settings.num_threads, rows));
+      So3Correlator::instance(settings.params.bandwidth)
+          ->correlate(source.target.spherical, H, settings.params.num_threads, rows));
   times.so3 += msSince(start);
   pose.peak = pose.verifiable ? C->argmaxNearIdentity(kHypothesisSeparation)
-                              : C->argmax(settings.num_threads);
+                              : C->argmax(settings.params.num_threads);
   pose.grid = std::move(C);
 }
 
@@ -54,22 +54,23 @@ Pose reprojectionPasses(const SourceContext& source, Pose pose, int& passes,
 {
   const StageSettings& settings = source.settings;
   const double settled = 0.25 * source.target.fine.grid.voxel_size;
-  for (int pass = 1; pass < settings.passes; ++pass) {
+  for (int pass = 1; pass < settings.params.passes; ++pass) {
     std::shared_ptr<Viewpoint> view = viewFrom(source, pose, times);
     Pose next;
     next.verifiable = pose.verifiable;
     residualGrid(source, view->H, next, times);
     const Eigen::Matrix3d dR =
-        rotationFromEuler(gridEuler(next.peak, settings.bandwidth));
+        rotationFromEuler(gridEuler(next.peak, settings.params.bandwidth));
     next.R = dR * pose.R;
     next.t = dR * pose.t;
     const Eigen::Vector3d shift =
         correlateTranslation(source.target.fine,
                              (next.R * source.points).colwise() + next.t, 0.0,
-                             settings.num_threads, times)
+                             settings.params.num_threads, times)
             .shift;
     next.t += shift;
-    next.verification = verificationOf(source, next, times, settings.num_threads);
+    next.verification =
+        verificationOf(source, next, times, settings.params.num_threads);
     if (!improves(next, pose)) {
       view->grid = next.grid;
       view->peak = next.peak;

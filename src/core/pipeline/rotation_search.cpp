@@ -38,7 +38,7 @@ Hypothesis peakHypothesis(const So3CorrelationGrid& C, const So3GridIndex& peak,
 void magnitudeHypotheses(const SourceContext& source, std::vector<Hypothesis>& out)
 {
   const TargetModel& target = source.target;
-  const int threads = source.settings.num_threads;
+  const int threads = source.settings.params.num_threads;
   SpatialGridParameters grid;
   grid.voxel_size = target.coarse.grid.voxel_size;
   const MagnitudeShells shells =
@@ -60,16 +60,17 @@ std::vector<Hypothesis> rangeHypotheses(const SourceContext& source,
 {
   const StageSettings& settings = source.settings;
   std::vector<So3GridIndex> peaks;
-  if (settings.rotation_candidates > 1)
-    peaks = distinctPeaks(correlation, settings.rotation_candidates,
-                          kHypothesisSeparation, settings.num_threads);
+  if (settings.params.rotation_candidates > 1)
+    peaks = distinctPeaks(correlation, settings.params.rotation_candidates,
+                          kHypothesisSeparation, settings.params.num_threads);
   if (peaks.empty())
-    peaks.push_back(correlation.argmax(settings.num_threads));
+    peaks.push_back(correlation.argmax(settings.params.num_threads));
   // Both norms are positive (sphericalSpectrum).
   const double norm = source.target.spherical_norm * source_norm;
   std::vector<Hypothesis> out;
   for (const So3GridIndex& peak : peaks)
-    out.push_back(peakHypothesis(correlation, peak, settings.bandwidth, norm, false));
+    out.push_back(
+        peakHypothesis(correlation, peak, settings.params.bandwidth, norm, false));
   return out;
 }
 
@@ -80,20 +81,20 @@ void orientationHypotheses(const SourceContext& source, RotationHypotheses& rota
 {
   const StageSettings& settings = source.settings;
   const TargetModel& target = source.target;
-  const int bandwidth = settings.orientation_bandwidth;
+  const int bandwidth = settings.params.orientation_bandwidth;
   const SphericalSpectrum O =
-      orientationSpectrum(source.patches, bandwidth, settings.num_threads);
+      orientationSpectrum(source.patches, bandwidth, settings.params.num_threads);
   const So3CorrelationGrid Co = So3Correlator::instance(bandwidth)->correlate(
-      target.orientation, O, settings.num_threads,
+      target.orientation, O, settings.params.num_threads,
       source.allowed.rotationRows(bandwidth));
   const double norm =
       std::sqrt(spectrumSquaredNorm(target.orientation) * spectrumSquaredNorm(O));
   const std::vector<So3GridIndex> peaks =
-      distinctPeaks(Co, settings.orientation_candidates + kSpareOrientationPeaks,
-                    kHypothesisSeparation, settings.num_threads);
+      distinctPeaks(Co, settings.params.orientation_candidates + kSpareOrientationPeaks,
+                    kHypothesisSeparation, settings.params.num_threads);
   for (std::size_t k = 0; k < peaks.size(); ++k)
-    (static_cast<int>(k) < settings.orientation_candidates ? rotations.hypotheses
-                                                           : rotations.spare)
+    (static_cast<int>(k) < settings.params.orientation_candidates ? rotations.hypotheses
+                                                                  : rotations.spare)
         .push_back(peakHypothesis(Co, peaks[k], bandwidth, norm, true));
 }
 
@@ -103,13 +104,14 @@ RotationHypotheses rotationSearch(const SourceContext& source, StageTimes& times
 {
   const StageSettings& settings = source.settings;
   const TargetModel& target = source.target;
-  const SphericalSpectrum H = sphericalSpectrum(
-      source.points, source.channels, settings, settings.num_threads, "source", times);
+  const SphericalSpectrum H =
+      sphericalSpectrum(source.points, source.channels, settings,
+                        settings.params.num_threads, "source", times);
   const auto start = Clock::now();
   const So3CorrelationGrid C =
-      So3Correlator::instance(settings.bandwidth)
-          ->correlate(target.spherical, H, settings.num_threads,
-                      source.allowed.rotationRows(settings.bandwidth));
+      So3Correlator::instance(settings.params.bandwidth)
+          ->correlate(target.spherical, H, settings.params.num_threads,
+                      source.allowed.rotationRows(settings.params.bandwidth));
   times.so3 += msSince(start);
   const auto begin = Clock::now();
   RotationHypotheses rotations;

@@ -16,7 +16,8 @@ namespace pcl::phaser::detail {
 /** The rotations pass 1 tries, not yet translated. */
 struct RotationHypotheses {
   /** The peaks of the range correlation, of the occupancy magnitudes (objects) and the
-   *  first orientation-histogram peaks (StageSettings::orientation_candidates). */
+   *  first orientation-histogram peaks (StageSettings::params.orientation_candidates).
+   */
   std::vector<Hypothesis> hypotheses;
   /** The next orientation-histogram peaks, tried when the choice is not claimed. */
   std::vector<Hypothesis> spare;

@@ -76,7 +76,7 @@ SourceContext sourceContext(const TargetModel& target, const Eigen::Matrix3Xd& p
   SourceContext source{target, points, channels, settings, allowed, {}, {}, {}, {}, {}};
   const double coarse_voxel = target.coarse.grid.voxel_size;
   // Four independent passes over the points as one-thread tasks, the longest first.
-  runTasks(4, settings.num_threads, [&](int part) {
+  runTasks(4, settings.params.num_threads, [&](int part) {
     if (part == 0)
       source.patches =
           surfacePatches(points, kPatchVoxels * coarse_voxel, Eigen::Vector3d::Zero());

@@ -26,24 +26,18 @@ struct StageMode {
   bool source_viewpoint = true;
 };
 
-/** The settings the stages use: the PhaserParameters of the same names as the mode
- *  and the priors adjust them, and the mode. stageSettings() sets every field (the
- *  defaults here are placeholders); the stages only read them. */
+/** The settings the stages use, made once per align() by stageSettings() and only read:
+ *  the caller's PhaserParameters as this pair runs them, and the mode. A setting a
+ * stage reads is read from params; the priors are not there (AllowedPoses holds them).
+ */
 struct StageSettings {
-  int bandwidth = 0;              ///< B of the spherical spectra and the SO(3) grid
-  int fusion_levels = 0;          ///< of the spherical signals
-  int spatial_grid_size = 0;      ///< voxels a side of the coarse grid (see voxel_size)
-  double voxel_size = 0.0;        ///< meters; 0: from spatial_grid_size
-  int passes = 1;                 ///< most passes, >= 1
-  int rotation_candidates = 1;    ///< peaks of the range correlation
-  int orientation_candidates = 0; ///< orientation-histogram peaks, within the tilt cone
-  int orientation_bandwidth = 0;  ///< B of the orientation histograms
-  int refinement_iterations = 0;  ///< Newton steps of the rotation refinement
-  double whitening = 0.0;         ///< of the pass-1 translation correlation, [0, 1]
-  bool normalized_refinement = false; ///< about sensor origins only
-  VerificationLimits limits;          ///< of a verified pose
-  int num_threads = 1;                ///< resolved, >= 1
-  StageMode mode;                     ///< which free-space tests apply
+  /** The caller's settings with the priors removed (no region, max_tilt_deg 0) and four
+   *  adjusted: spatial_grid_size capped for objects, orientation_candidates within the
+   *  tilt cone, normalized_refinement about sensor origins only, num_threads resolved
+   *  (>= 1). */
+  PhaserParameters params;
+  VerificationLimits limits; ///< of a verified pose, params' limits
+  StageMode mode;            ///< which free-space tests apply
 };
 
 /** The settings of \a params for a pair registered in \a mode under the priors

@@ -122,7 +122,7 @@ targetModel(const Target& target, ProjectionCenter center,
     if (region) {
       const RegionCloud cloud = thinForModel(
           cropToRegion(target.points(), TargetAccess::channels(target), *region),
-          settings.spatial_grid_size, settings.voxel_size);
+          settings.params.spatial_grid_size, settings.params.voxel_size);
       cache.offset = region->center;
       cache.model = prepareTarget(cloud.points, settings, cloud.channels);
     } else {

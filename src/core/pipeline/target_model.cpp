@@ -61,8 +61,9 @@ void addSurfaceModel(TargetModel& model, const Eigen::Matrix3Xd& points,
   const StageSettings& settings = model.settings;
   const SurfacePatches patches =
       surfacePatches(points, kPatchVoxels * coarse_voxel, Eigen::Vector3d::Zero());
-  if (settings.orientation_candidates > 0)
-    model.orientation = orientationSpectrum(patches, settings.orientation_bandwidth, 1);
+  if (settings.params.orientation_candidates > 0)
+    model.orientation =
+        orientationSpectrum(patches, settings.params.orientation_bandwidth, 1);
   model.thickness = patches.thickness;
   const double radius = kVerificationVoxels * coarse_voxel;
   model.index = thinnedIndex(points, patches, radius);
@@ -86,13 +87,15 @@ void addFineGrid(TargetModel& model, const Eigen::Matrix3Xd& points,
 
 bool sameModel(const StageSettings& prepared, const StageSettings& wanted)
 {
-  return prepared.bandwidth == wanted.bandwidth &&
-         prepared.spatial_grid_size == wanted.spatial_grid_size &&
-         prepared.voxel_size == wanted.voxel_size && prepared.passes == wanted.passes &&
-         prepared.fusion_levels == wanted.fusion_levels &&
-         prepared.normalized_refinement == wanted.normalized_refinement &&
-         prepared.orientation_candidates == wanted.orientation_candidates &&
-         prepared.orientation_bandwidth == wanted.orientation_bandwidth &&
+  return prepared.params.bandwidth == wanted.params.bandwidth &&
+         prepared.params.spatial_grid_size == wanted.params.spatial_grid_size &&
+         prepared.params.voxel_size == wanted.params.voxel_size &&
+         prepared.params.passes == wanted.params.passes &&
+         prepared.params.fusion_levels == wanted.params.fusion_levels &&
+         prepared.params.normalized_refinement == wanted.params.normalized_refinement &&
+         prepared.params.orientation_candidates ==
+             wanted.params.orientation_candidates &&
+         prepared.params.orientation_bandwidth == wanted.params.orientation_bandwidth &&
          prepared.mode.sensor_centered == wanted.mode.sensor_centered &&
          prepared.mode.viewpoints == wanted.mode.viewpoints;
 }
@@ -106,14 +109,14 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
   auto model = std::make_shared<TargetModel>();
   model->settings = settings;
   SpatialGridParameters grid;
-  grid.grid_size = settings.spatial_grid_size;
-  grid.voxel_size = settings.voxel_size;
+  grid.grid_size = settings.params.spatial_grid_size;
+  grid.voxel_size = settings.params.voxel_size;
   const SpatialGrid coarse = makeSpatialGrid(points, grid);
   // Five one-thread tasks, the longest first: the same result on any thread count.
-  runTasks(5, settings.num_threads, [&](int part) {
+  runTasks(5, settings.params.num_threads, [&](int part) {
     if (part == 0) {
       addSurfaceModel(*model, points, coarse.voxel_size);
-    } else if (part == 1 && settings.passes > 1) {
+    } else if (part == 1 && settings.params.passes > 1) {
       addFineGrid(*model, points, grid);
     } else if (part == 2) {
       model->coarse = occupancySpectrum(coarse, points, 1);
@@ -126,7 +129,7 @@ std::shared_ptr<const TargetModel> prepareTarget(const Eigen::Matrix3Xd& points,
       StageTimes unreported;
       model->spherical = sphericalSpectrum(
           points, channels, settings, 1, "target", unreported,
-          settings.normalized_refinement ? &model->spherical_support : nullptr);
+          settings.params.normalized_refinement ? &model->spherical_support : nullptr);
       model->spherical_norm = std::sqrt(spectrumSquaredNorm(model->spherical));
     }
   });

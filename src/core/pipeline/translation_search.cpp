@@ -53,7 +53,7 @@ SpatialVolumeF coarseCorrelation(const SourceContext& source, const Eigen::Matri
   SpatialVolumeF C = correlateSpectraWhitened(
       target.coarse_single,
       occupancySpectrumSingle(target.coarse.grid, R * source.coarse_points, 1),
-      source.settings.whitening, 1);
+      source.settings.params.whitening, 1);
   const double max_shift = shiftBound(source);
   if (std::isfinite(max_shift))
     keepShiftsWithin(C, Eigen::Vector3d::Zero(), max_shift);
@@ -68,7 +68,7 @@ void runTimed(const SourceContext& source, std::size_t n, StageTimes& times,
 {
   std::vector<StageTimes> task_times(n);
   const auto start = Clock::now();
-  runTasks(static_cast<int>(n), source.settings.num_threads, [&](int k) {
+  runTasks(static_cast<int>(n), source.settings.params.num_threads, [&](int k) {
     task(static_cast<std::size_t>(k), task_times[static_cast<std::size_t>(k)]);
   });
   const double wall = msSince(start);

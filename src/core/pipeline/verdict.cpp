@@ -58,7 +58,7 @@ Distinctness standsOut(const SourceContext& source, const Pose& pose,
   if (source.verification)
     distinctness.error = rankDifferenceError(
         source.verificationClouds(), pose, {h.rotation, h.translation},
-        correlatedBlock(source), source.settings.num_threads);
+        correlatedBlock(source), source.settings.params.num_threads);
   distinctness.stands_out = pose.verification.rank - distinctness.runner_up_rank >
                             kDistinctErrors * distinctness.error;
   return distinctness;
