@@ -128,6 +128,7 @@ Judged judge(const std::string& method, const MethodResult& r,
   j.nees = neesOf(r, truth);
   j.estimate = r.transformation;
   j.phaser = r.phaser;
+  j.stages = r.stages;
   return j;
 }
 

@@ -20,6 +20,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pcl::phaser {
@@ -40,6 +41,9 @@ struct MethodSettings {
   PhaserParameters engine;
 };
 
+/** \brief A method's time by stage, in the order it runs them: (name, ms). */
+using StageList = std::vector<std::pair<std::string, double>>;
+
 /** \brief One registration's outcome (T maps the source into the target frame). */
 struct MethodResult {
   Eigen::Matrix4d transformation = Eigen::Matrix4d::Identity();
@@ -51,6 +55,10 @@ struct MethodResult {
   /** pcl_phaser's result without its lists (hypotheses, rotation samples): the CSV's
    *  result columns (result_csv.h); none for other methods */
   std::optional<PhaserResult> phaser;
+  /** the stages of ms: pcl_phaser's diagnostics.times (visitStageTimes() names), the
+   *  FPFH aligners' "features" (downsampling, normals and FPFH of both clouds) and
+   *  "search" (align()); empty for the other methods. Their sum is at most ms. */
+  StageList stages;
   bool has_covariance = false;
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
 };
@@ -85,6 +93,7 @@ struct Judged {
   NeesFigures nees;       ///< under the method's covariance, -1 without one
   Eigen::Matrix4d estimate = Eigen::Matrix4d::Identity(); ///< T_target_source
   std::optional<PhaserResult> phaser; ///< pcl_phaser's result (MethodResult)
+  StageList stages;                   ///< the method's stages (MethodResult)
 };
 
 /** \brief \a r of \a method judged against \a truth (T_target_source): errors, NEES,

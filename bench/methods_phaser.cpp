@@ -47,6 +47,9 @@ MethodResult align(const typename pcl::PointCloud<PointP>::ConstPtr& source,
   result.converged = phaser.hasConverged();
   result.phaser = withoutLists(phaser.getResult());
   result.score = result.phaser->diagnostics.translation_score;
+  visitStageTimes(result.phaser->diagnostics.times, [&](const char* name, double ms) {
+    result.stages.emplace_back(name, ms);
+  });
   if (result.converged) {
     result.covariance = phaser.getCovariance();
     result.has_covariance = true;

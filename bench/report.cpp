@@ -135,6 +135,42 @@ void writeCsv(std::ostream& out, const std::vector<Trial>& trials)
   }
 }
 
+void writeStageTable(std::ostream& out, const std::vector<const Judged*>& group,
+                     const std::vector<std::string>& methods, double fft_ms)
+{
+  double reference_ms = NAN; // the first method's median total
+  out << tableHeader({"method", "stage", "median (ms)", "median (FFT128)",
+                      "x " + methods.front() + "'s total"});
+  for (const std::string& method : methods) {
+    std::vector<const Judged*> mine;
+    for (const Judged* t : group)
+      if (t->method == method)
+        mine.push_back(t);
+    if (mine.empty())
+      continue;
+    const auto medianOf = [&](const std::string& stage) {
+      std::vector<double> ms;
+      for (const Judged* t : mine) {
+        if (stage == "total")
+          ms.push_back(t->ms);
+        for (const auto& [name, stage_ms] : t->stages)
+          if (name == stage)
+            ms.push_back(stage_ms);
+      }
+      return median(ms);
+    };
+    StageList rows = {{"total", medianOf("total")}};
+    for (const auto& stage : mine.front()->stages)
+      rows.emplace_back(stage.first, medianOf(stage.first));
+    if (method == methods.front())
+      reference_ms = rows.front().second;
+    for (const auto& [stage, value] : rows)
+      out << "| " << method << " | " << stage << " | " << formatValue("%.1f", value)
+          << " | " << formatValue("%.2f", value / fft_ms) << " | "
+          << formatValue("%.3f", value / reference_ms) << " |\n";
+  }
+}
+
 void writeSummary(std::ostream& out, const std::vector<Trial>& trials, bool by_set)
 {
   // Keys keep first-seen order of methods inside each group.

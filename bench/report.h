@@ -94,6 +94,14 @@ NeesSummary summarizeNees(const std::vector<const Judged*>& group);
  *  fields (result_csv.h). */
 void writeCsv(std::ostream& out, const std::vector<Trial>& trials);
 
+/** \brief Markdown table of where each method's time goes: for each of \a methods with
+ *  trials in \a group, in that order, a row "total" (the median time per trial) and one
+ *  per stage (Judged::stages, in the order of the method's first trial; median over
+ *  the trials), each in ms, in FFT128 (\a fft_ms) and as a share of the first method's
+ *  median total. Medians of stages need not add up to the median total. */
+void writeStageTable(std::ostream& out, const std::vector<const Judged*>& group,
+                     const std::vector<std::string>& methods, double fft_ms);
+
 /** \brief Markdown table grouped by (sweep, value, method) over all sets, or by (set,
  * method) when \a by_set: trials, success rate, median RRE / RTE over successes, median
  * and p90 time. */

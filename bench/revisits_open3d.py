@@ -6,7 +6,9 @@
 Both run in this process on the same pairs, one after the other per pair, with the same
 number of threads; times are wall-clock per pair (file reading excluded, Open3D's
 downsampling, normals and features included) and reported as medians and as the ratio
-of Open3D's time to pcl_phaser's. Open3D follows its own tutorial's recipe at a voxel v
+of Open3D's time to pcl_phaser's. A second table gives each method's stages (Open3D's
+describe: downsampling, normals and FPFH of both clouds, then its RANSAC; pcl_phaser's
+result.times), medians over the pairs in ms and as shares of pcl_phaser's median total. Open3D follows its own tutorial's recipe at a voxel v
 (normals within 2 v, FPFH within 5 v, RANSAC with mutual-free matching, 1.5 v inlier
 distance, edge-length 0.9 and distance checkers, 100,000 iterations, confidence 0.999).
 Success as in pcl_phaser_bench revisits: RRE < 5 deg and RTE < 2 m.
@@ -57,7 +59,13 @@ def errors(T_est, T_ref):
     return angle, float(np.linalg.norm(T_est[:3, 3] - T_ref[:3, 3]))
 
 
+# pcl_phaser's stages, as result.times names them (visitStageTimes() order).
+PHASER_STAGES = ("target", "sampling", "sht", "so3", "refinement", "translation",
+                 "orientation", "verification")
+
+
 def open3d_align(source, target, v):
+    """Open3D's T_target_source, whether RANSAC found one, and its stages (ms)."""
     reg = o3d.pipelines.registration
 
     def describe(points):
@@ -68,14 +76,18 @@ def open3d_align(source, target, v):
             down, o3d.geometry.KDTreeSearchParamHybrid(radius=5 * v, max_nn=100))
         return down, fpfh
 
+    start = time.perf_counter()
     s, fs = describe(source)
     t, ft = describe(target)
+    described = time.perf_counter()
     result = reg.registration_ransac_based_on_feature_matching(
         s, t, fs, ft, False, 1.5 * v, reg.TransformationEstimationPointToPoint(False), 3,
         [reg.CorrespondenceCheckerBasedOnEdgeLength(0.9),
          reg.CorrespondenceCheckerBasedOnDistance(1.5 * v)],
         reg.RANSACConvergenceCriteria(100000, 0.999))
-    return np.asarray(result.transformation), result.fitness > 0.0
+    stages = {"describe": 1e3 * (described - start),
+              "ransac": 1e3 * (time.perf_counter() - described)}
+    return np.asarray(result.transformation), result.fitness > 0.0, stages
 
 
 def main():
@@ -102,18 +114,22 @@ def main():
             if method == "pcl_phaser":
                 r = pcl_phaser.align(S, T, params=params)
                 T_est, valid = np.asarray(r.transformation), r.converged
+                stages = {name: getattr(r.times, name) for name in PHASER_STAGES}
             else:
-                T_est, valid = open3d_align(S, T, ARGS.voxel)
+                T_est, valid, stages = open3d_align(S, T, ARGS.voxel)
             ms = 1e3 * (time.perf_counter() - start)
             rre, rte = errors(T_est, T_ref)
-            rows.append((method, src, tgt, dist, rre, rte, valid, ms))
+            rows.append((method, src, tgt, dist, rre, rte, valid, ms, stages))
             print(f"[{k + 1}/{len(pairs)}] {src} -> {tgt} {method:10s} RRE {rre:7.2f} "
                   f"deg RTE {rte:7.3f} m valid {int(valid)} {ms:7.0f} ms", file=sys.stderr)
     if ARGS.csv:
         with open(ARGS.csv, "w") as f:
-            f.write("method,source,target,dist,rre,rte,valid,ms\n")
+            names = list(PHASER_STAGES) + ["describe", "ransac"]
+            f.write("method,source,target,dist,rre,rte,valid,ms," +
+                    ",".join("stages_ms." + n for n in names) + "\n")
             for r in rows:
-                f.write(",".join(str(x) for x in r) + "\n")
+                f.write(",".join(str(x) for x in r[:8]) + "," +
+                        ",".join(str(r[8].get(n, "")) for n in names) + "\n")
     report(rows, len(pairs))
     return 0
 
@@ -135,6 +151,20 @@ def report(rows, n):
         print(f"| {method} | {len(ok)} / {len(mine)} | {med([r[4] for r in ok])} | "
               f"{med([r[5] for r in ok])} | {wrong_valid} | "
               f"{np.median([r[7] for r in mine]):.0f} | {ratio:.2f} |")
+    report_stages(rows)
+
+
+def report_stages(rows):
+    """Each method's median total and stages, in ms and x pcl_phaser's median total."""
+    reference = np.median([r[7] for r in rows if r[0] == "pcl_phaser"])
+    print("\nWhere the time goes: medians over the pairs.\n")
+    print("| method | stage | median (ms) | x pcl_phaser's total |\n|---|---|---|---|")
+    for method in ("pcl_phaser", "open3d"):
+        mine = [r for r in rows if r[0] == method]
+        lines = [("total", np.median([r[7] for r in mine]))]
+        lines += [(name, np.median([r[8][name] for r in mine])) for name in mine[0][8]]
+        for name, ms in lines:
+            print(f"| {method} | {name} | {ms:.1f} | {ms / reference:.3f} |")
 
 
 if __name__ == "__main__":

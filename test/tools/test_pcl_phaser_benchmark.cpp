@@ -360,6 +360,15 @@ TEST(PclPhaserBenchmark, RevisitStudyTabulatesMethodsByDistance)
         << bin << "\n"
         << md;
   EXPECT_NE(md.find("| phaser_xyz | all | 2 | "), std::string::npos) << md;
+  EXPECT_NE(md.find("| method | stage | median (ms) | median (FFT128) | x phaser_xyz's "
+                    "total |"),
+            std::string::npos)
+      << md;
+  for (const char* stage : {"total", "target", "sampling", "so3", "translation",
+                            "orientation", "verification"})
+    EXPECT_NE(md.find(std::string("| phaser_xyz | ") + stage + " | "),
+              std::string::npos)
+        << stage;
   EXPECT_NE(
       md.find("| method | distance | converged with covariance | mean NEES (6) |"),
       std::string::npos)
