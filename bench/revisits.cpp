@@ -447,10 +447,6 @@ int runRevisitsStudy(BenchArguments& args)
       std::fprintf(stderr, "revisits: %s not found, skipping\n", path.c_str());
       return 0;
     }
-  // Scans are read as the pairs come: from a reader process started while this one is
-  // small. Else each read forks this process, and the next align pays copy-on-write
-  // faults on the memory it reuses: 12-15k instead of 0.1-5k, 1.5x its time.
-  startCloudReader();
   std::vector<RevisitPair> pairs;
   std::vector<ScanPose> poses;
   std::string origin;
