@@ -34,7 +34,7 @@ Pose refinedOnSamples(const SourceContext& source, const Pose& pose, StageTimes&
   const auto start = Clock::now();
   const RigidPose refined = refineOnSamples(
       source.verificationClouds(), pose, kLocalRefinementSteps, kHypothesisSeparation,
-      2.0 * source.target.coarse.grid.voxel_size, all_samples);
+      2.0 * source.target.coarse.grid.voxel_size, all_samples, num_threads);
   times.verification += msSince(start);
   if (refined.R == pose.R && refined.t == pose.t)
     return pose; // refused or nothing to climb: verifies the same

@@ -74,7 +74,7 @@ void judgeFinalPose(const SourceContext& source, const Pose& pose, PhaserResult&
   diagnostics.runner_up_rank = distinctness.runner_up_rank;
   diagnostics.runner_up_error = distinctness.error;
   if (!fitCovariance(source.target.index, source.samples, pose, correlatedBlock(source),
-                     result.fit_covariance))
+                     result.fit_covariance, source.settings.params.num_threads))
     result.fit_covariance.setZero();
   diagnostics.times.verification += msSince(start);
   diagnostics.verified =

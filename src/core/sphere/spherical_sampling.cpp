@@ -15,8 +15,9 @@ namespace pcl::phaser {
 namespace {
 
 /** Fewer points than this are binned by the calling thread: waking a worker costs more
- *  than the work (two atan2 per point). */
-constexpr Eigen::Index kMinParallelPoints = 16384;
+ *  than the work (two atan2 per point; the free-space checks of a final pose, 3,000 to
+ *  16,384 samples, measured faster on two threads from 4096). */
+constexpr Eigen::Index kMinParallelPoints = 4096;
 
 } // namespace
 

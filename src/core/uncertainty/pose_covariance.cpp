@@ -31,16 +31,19 @@ struct FitTerms {
 
 /** The matches of refinePose's sweep at \a pose (forEachPlaneMatch). */
 FitTerms fitTerms(const PointIndex& target, const VerificationSamples& samples,
-                  const RigidPose& pose)
+                  const RigidPose& pose, int num_threads)
 {
   FitTerms terms;
   std::vector<Eigen::Vector3d> positions;
-  forEachPlaneMatch(target, samples, pose, [&](const PlaneMatch& m) {
-    terms.H += m.weight * m.jacobian * m.jacobian.transpose();
-    terms.gradients.push_back(m.weight * m.residual * m.jacobian);
-    terms.gradient += terms.gradients.back();
-    positions.push_back(m.position);
-  });
+  forEachPlaneMatch(
+      target, samples, pose,
+      [&](const PlaneMatch& m) {
+        terms.H += m.weight * m.jacobian * m.jacobian.transpose();
+        terms.gradients.push_back(m.weight * m.residual * m.jacobian);
+        terms.gradient += terms.gradients.back();
+        positions.push_back(m.position);
+      },
+      num_threads);
   terms.positions.resize(3, static_cast<Eigen::Index>(positions.size()));
   for (std::size_t i = 0; i < positions.size(); ++i)
     terms.positions.col(static_cast<Eigen::Index>(i)) = positions[i];
@@ -71,11 +74,11 @@ Matrix6d blockMeat(const FitTerms& terms, double block)
 
 bool fitCovariance(const PointIndex& target, const VerificationSamples& samples,
                    const RigidPose& pose, double block,
-                   Eigen::Matrix<double, 6, 6>& covariance)
+                   Eigen::Matrix<double, 6, 6>& covariance, int num_threads)
 {
   if (!(block > 0.0) || samples.weights.size() != samples.points.cols())
     return false;
-  const FitTerms terms = fitTerms(target, samples, pose);
+  const FitTerms terms = fitTerms(target, samples, pose, num_threads);
   if (terms.gradients.size() < static_cast<std::size_t>(kMinFitSamples))
     return false;
   const Eigen::LDLT<Matrix6d> ldlt(terms.H);

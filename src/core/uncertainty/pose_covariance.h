@@ -34,10 +34,11 @@ constexpr double kFitModelErrorFactor = 3.65;
  *  (meters) of (sum of their g_i)(...)^T averaged over two grids offset by half a
  *  block, plus d d^T for the Gauss-Newton step d = -H^-1 sum g_i still open. The error
  *  is omega = Log(R_true R^T) [rad], then nu = t_true - Exp(omega) t [m].
- *  Deterministic. \return false (\a covariance untouched) with fewer than
+ *  Deterministic, the same for any \a num_threads (the look-ups' threads,
+ *  forEachPlaneMatch). \return false (\a covariance untouched) with fewer than
  *  kMinFitSamples matches or when a direction is unmeasured (not positive definite) */
 bool fitCovariance(const PointIndex& target, const VerificationSamples& samples,
                    const RigidPose& pose, double block,
-                   Eigen::Matrix<double, 6, 6>& covariance);
+                   Eigen::Matrix<double, 6, 6>& covariance, int num_threads = 1);
 
 } // namespace pcl::phaser

@@ -32,16 +32,19 @@ Eigen::Matrix3d expSo3(const Eigen::Vector3d& w)
  *  weighted point-to-plane distances. Returns the number of matches. */
 int sweep(const PointIndex& target, const VerificationSamples& samples,
           const RigidPose& pose, Eigen::Matrix<double, 6, 6>& H,
-          Eigen::Matrix<double, 6, 1>& g)
+          Eigen::Matrix<double, 6, 1>& g, int num_threads)
 {
   H.setZero();
   g.setZero();
   int matched = 0;
-  forEachPlaneMatch(target, samples, pose, [&](const PlaneMatch& m) {
-    H += m.weight * m.jacobian * m.jacobian.transpose();
-    g += m.weight * m.residual * m.jacobian;
-    ++matched;
-  });
+  forEachPlaneMatch(
+      target, samples, pose,
+      [&](const PlaneMatch& m) {
+        H += m.weight * m.jacobian * m.jacobian.transpose();
+        g += m.weight * m.residual * m.jacobian;
+        ++matched;
+      },
+      num_threads);
   return matched;
 }
 
@@ -49,11 +52,11 @@ int sweep(const PointIndex& target, const VerificationSamples& samples,
  *  vector, then translation) into \a delta. False, with \a pose unchanged, when fewer
  *  than six samples match or the step is not finite. */
 bool step(const PointIndex& target, const VerificationSamples& samples, RigidPose& pose,
-          Eigen::Matrix<double, 6, 1>& delta)
+          Eigen::Matrix<double, 6, 1>& delta, int num_threads)
 {
   Eigen::Matrix<double, 6, 6> H;
   Eigen::Matrix<double, 6, 1> g;
-  if (sweep(target, samples, pose, H, g) < 6)
+  if (sweep(target, samples, pose, H, g, num_threads) < 6)
     return false;
   // A little damping keeps directions the matches leave free (ground only, one wall
   // direction) where they are.
@@ -73,7 +76,7 @@ bool step(const PointIndex& target, const VerificationSamples& samples, RigidPos
  *  \a start). The center is returned when a step leaves. */
 RigidPose refine(const PointIndex& target, const VerificationSamples& samples,
                  const RigidPose& start, int iterations, double max_angle,
-                 double max_shift, const PointIndex* reach)
+                 double max_shift, const PointIndex* reach, int num_threads)
 {
   // The source's origin (its sensor) lands at t: how far it moved.
   const auto outside = [&](const RigidPose& pose, const RigidPose& center) {
@@ -84,12 +87,12 @@ RigidPose refine(const PointIndex& target, const VerificationSamples& samples,
   RigidPose center = start;
   if (reach) {
     RigidPose reached = start;
-    if (step(*reach, samples, reached, delta) && !outside(reached, start))
+    if (step(*reach, samples, reached, delta, num_threads) && !outside(reached, start))
       center = reached;
   }
   RigidPose pose = center;
   for (int it = 0; it < iterations; ++it) {
-    if (!step(target, samples, pose, delta))
+    if (!step(target, samples, pose, delta, num_threads))
       break;
     if (outside(pose, center))
       return center;
@@ -106,14 +109,15 @@ RigidPose refinePose(const PointIndex& target, const VerificationSamples& sample
                      const RigidPose& start, int iterations)
 {
   const double unbounded = std::numeric_limits<double>::infinity();
-  return refine(target, samples, start, iterations, unbounded, unbounded, nullptr);
+  return refine(target, samples, start, iterations, unbounded, unbounded, nullptr, 1);
 }
 
 RigidPose refinePoseWithin(const PointIndex& target, const VerificationSamples& samples,
                            const RigidPose& start, int iterations, double max_angle,
-                           double max_shift, const PointIndex* reach)
+                           double max_shift, const PointIndex* reach, int num_threads)
 {
-  return refine(target, samples, start, iterations, max_angle, max_shift, reach);
+  return refine(target, samples, start, iterations, max_angle, max_shift, reach,
+                num_threads);
 }
 
 } // namespace pcl::phaser

@@ -76,11 +76,11 @@ Verification verifyBothWays(const VerificationClouds& clouds, const RigidPose& p
 
 RigidPose refineOnSamples(const VerificationClouds& clouds, const RigidPose& pose,
                           int iterations, double max_angle, double max_shift,
-                          bool all_samples)
+                          bool all_samples, int num_threads)
 {
   return refinePoseWithin(*clouds.target,
                           all_samples ? *clouds.samples : *clouds.polish, pose,
-                          iterations, max_angle, max_shift, clouds.reach);
+                          iterations, max_angle, max_shift, clouds.reach, num_threads);
 }
 
 double rankDifferenceError(const VerificationClouds& clouds, const RigidPose& a,

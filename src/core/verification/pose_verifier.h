@@ -37,10 +37,11 @@ Verification verifyBothWays(const VerificationClouds& clouds, const RigidPose& p
 
 /** \brief refinePoseWithin of \a pose for \a iterations steps on the polish samples
  * (all samples when \a all_samples), within \a max_angle radians and \a max_shift
- * meters, with the reach index's first step. */
+ * meters, with the reach index's first step; its look-ups on \a num_threads threads
+ * (the same result for any count). */
 RigidPose refineOnSamples(const VerificationClouds& clouds, const RigidPose& pose,
                           int iterations, double max_angle, double max_shift,
-                          bool all_samples);
+                          bool all_samples, int num_threads = 1);
 
 /** \brief Standard error of the rank difference of poses \a a and \a b over the same
  *  samples (paired differences). Without free spaces the differences of closeness
